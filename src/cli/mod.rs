@@ -1,0 +1,67 @@
+//! Command-line parsing and the headless commands.
+
+mod render;
+
+use anyhow::Result;
+use clap::{Parser, Subcommand};
+use prism::render::{OutputError, SettingsError};
+use prism::scene::SceneError;
+use std::path::PathBuf;
+
+#[derive(Parser, Debug)]
+#[command(name = "prism", version, about = "A fast and accurate Whitted ray tracer", long_about = None)]
+pub struct Args {
+    #[command(subcommand)]
+    pub command: Option<Command>,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Open the interactive viewer (the default when no command is given).
+    View(ViewArgs),
+    /// Render a scene to a PNG file, headless.
+    Render(render::RenderArgs),
+}
+
+#[derive(clap::Args, Debug, Default)]
+pub struct ViewArgs {
+    /// Scene file (TOML); the seed scene when omitted.
+    pub scene: Option<PathBuf>,
+    /// Initial window width of the image area, in pixels.
+    #[arg(long)]
+    pub width: Option<u32>,
+    /// Initial window height, in pixels.
+    #[arg(long)]
+    pub height: Option<u32>,
+    /// Anti-aliasing level N (N×N subsamples per pixel, 1..8).
+    #[arg(long)]
+    pub aa: Option<u32>,
+    /// Where screenshots are saved (default: the working directory).
+    #[arg(long, value_name = "DIR")]
+    pub screenshot_dir: Option<PathBuf>,
+}
+
+pub fn run(args: Args) -> Result<()> {
+    match args.command {
+        Some(Command::Render(a)) => render::run(a),
+        Some(Command::View(a)) => view(a),
+        None => view(ViewArgs::default()),
+    }
+}
+
+fn view(_: ViewArgs) -> Result<()> {
+    anyhow::bail!("the viewer is not part of this build yet; use `prism render`")
+}
+
+/// The scene file to load: the one given, or the seed scene.
+pub fn scene_path(given: Option<PathBuf>) -> PathBuf {
+    given.unwrap_or_else(prism::seed_scene_path)
+}
+
+/// 2 for bad input (scene file, settings, output path), 1 for anything else.
+pub fn exit_code(error: &anyhow::Error) -> u8 {
+    let bad_input = error
+        .chain()
+        .any(|e| e.is::<SceneError>() || e.is::<SettingsError>() || e.is::<OutputError>());
+    if bad_input { 2 } else { 1 }
+}

@@ -1,0 +1,134 @@
+//! `prism render`: a headless render to PNG with a progress bar.
+
+use anyhow::{Context, Result};
+use indicatif::{ProgressBar, ProgressStyle};
+use prism::render::{AdaptiveSettings, PendingPng, RenderSettings};
+use prism::sampler::SampleLayout;
+use prism::scene::{PreparedScene, load_scene};
+use std::path::PathBuf;
+use std::sync::Arc;
+use std::time::Instant;
+
+#[derive(clap::Args, Debug)]
+pub struct RenderArgs {
+    /// Scene file (TOML); the seed scene when omitted.
+    pub scene: Option<PathBuf>,
+    /// Image width in pixels (default: the scene's, else 800).
+    #[arg(long)]
+    pub width: Option<u32>,
+    /// Image height in pixels (default: the scene's, else 600).
+    #[arg(long)]
+    pub height: Option<u32>,
+    /// Anti-aliasing level N: N×N subsamples per pixel, 1..8 (default: the scene's).
+    #[arg(long)]
+    pub aa: Option<u32>,
+    /// Output PNG file.
+    #[arg(long, short, default_value = "render.png")]
+    pub out: PathBuf,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// Most reflection/refraction bounces (default: the scene's, else 5).
+    #[arg(long)]
+    pub max_depth: Option<u32>,
+    /// Subsample positions: stratified (jittered in each cell) or grid (cell centres).
+    #[arg(long, value_enum, default_value = "stratified")]
+    pub layout: Layout,
+    /// Stop refining pixels whose subsamples agree.
+    #[arg(long)]
+    pub adaptive: bool,
+    /// Adaptive tolerance: standard error of a pixel's luminance, 0..1 scale.
+    #[arg(long, default_value_t = AdaptiveSettings::default().tolerance)]
+    pub tolerance: f32,
+    /// Trace every secondary ray, however faint (the unoptimised reference).
+    #[arg(long)]
+    pub exact: bool,
+    /// No progress bar.
+    #[arg(long, short)]
+    pub quiet: bool,
+}
+
+#[derive(clap::ValueEnum, Clone, Copy, Debug)]
+pub enum Layout {
+    Stratified,
+    Grid,
+}
+
+pub fn run(args: RenderArgs) -> Result<()> {
+    let scene_path = super::scene_path(args.scene);
+    let mut scene = load_scene(&scene_path)?;
+    if let Some(depth) = args.max_depth {
+        scene.render.max_depth = depth;
+    }
+    let mut settings = RenderSettings::new(
+        args.width.unwrap_or(scene.render.width),
+        args.height.unwrap_or(scene.render.height),
+        args.aa.unwrap_or(scene.render.aa),
+    );
+    settings.layout = match args.layout {
+        Layout::Stratified => SampleLayout::Stratified,
+        Layout::Grid => SampleLayout::Grid,
+    };
+    if args.exact {
+        settings.min_weight = 0.0;
+    }
+    if args.adaptive {
+        settings.adaptive = Some(AdaptiveSettings {
+            tolerance: args.tolerance,
+            ..AdaptiveSettings::default()
+        });
+    }
+    settings.validate()?;
+    if args.threads == Some(0) {
+        anyhow::bail!("--threads 0: at least one thread is needed");
+    }
+    // Claim the output file first: an unwritable path fails now, not after the render.
+    let pending = PendingPng::create(&args.out)?;
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(args.threads.unwrap_or(0))
+        .build()
+        .context("cannot start the worker threads")?;
+
+    let prepared = Arc::new(PreparedScene::new(&scene));
+    let bar = if args.quiet {
+        ProgressBar::hidden()
+    } else {
+        ProgressBar::new(settings.total_passes() as u64)
+    };
+    bar.set_style(
+        ProgressStyle::with_template("{spinner} pass {pos}/{len} [{bar:30}] {elapsed} {msg}")
+            .expect("valid template")
+            .progress_chars("=> "),
+    );
+    let start = Instant::now();
+    let job = pool.install(|| {
+        prism::render::render(prepared, scene.camera, settings, |job, stats| {
+            bar.set_position(job.passes_done() as u64);
+            bar.set_message(format!(
+                "{:.0} ms/pass, {} px active",
+                stats.seconds * 1e3,
+                job.active_pixels()
+            ));
+        })
+    });
+    bar.finish_and_clear();
+    let wall = start.elapsed().as_secs_f64();
+    let path = pending.finish(&job.accumulator().to_rgb8())?;
+    let rays = job.rays_traced();
+    eprintln!(
+        "rendered {} ({}×{}, {} threads) in {:.3} s: {:.2} samples per pixel, {} passes, \
+         {:.1} M rays/s ({} primary, {} shadow, {} secondary)",
+        path.display(),
+        settings.width,
+        settings.height,
+        pool.current_num_threads(),
+        wall,
+        job.samples_per_pixel(),
+        job.passes_done(),
+        rays.total() as f64 / wall / 1e6,
+        rays.primary,
+        rays.shadow,
+        rays.secondary,
+    );
+    Ok(())
+}

@@ -1,0 +1,112 @@
+//! The closed set of primitive shapes, dispatched by `match` (no vtables on the hot path).
+
+use super::aabb::Aabb;
+use super::cylinder::{Cylinder, CylinderPart};
+use super::ray::RayQuery;
+use super::sphere::Sphere;
+use super::triangle::{Triangle, TriangleHit};
+use glam::Vec3;
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Shape {
+    Sphere(Sphere),
+    Triangle(Triangle),
+    Cylinder(Cylinder),
+}
+
+/// What the intersection test found; enough to rebuild the surface point later, once, for
+/// the nearest hit only.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ShapeHit {
+    pub t: f32,
+    pub detail: HitDetail,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum HitDetail {
+    Sphere,
+    Triangle { b: [f32; 3] },
+    Cylinder { part: CylinderPart },
+}
+
+/// A point on a surface, as shading needs it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SurfacePoint {
+    pub point: Vec3,
+    /// Per-coordinate bound on the distance of `point` from the true surface.
+    pub error: Vec3,
+    /// Outward (for closed shapes) or winding-order (for triangles) unit normal.
+    pub normal: Vec3,
+    pub uv: (f32, f32),
+}
+
+impl Shape {
+    #[inline]
+    pub fn intersect(&self, q: &RayQuery, t_max: f32) -> Option<ShapeHit> {
+        match self {
+            Shape::Sphere(s) => s.intersect(&q.ray, t_max).map(|t| ShapeHit {
+                t,
+                detail: HitDetail::Sphere,
+            }),
+            Shape::Triangle(tri) => tri.intersect(q, t_max).map(|h| ShapeHit {
+                t: h.t,
+                detail: HitDetail::Triangle { b: h.b },
+            }),
+            Shape::Cylinder(c) => c.intersect(&q.ray, t_max).map(|(t, part)| ShapeHit {
+                t,
+                detail: HitDetail::Cylinder { part },
+            }),
+        }
+    }
+
+    /// How many times the segment (0, t_max) of the ray crosses this shape's surface.
+    #[inline]
+    pub fn crossings(&self, q: &RayQuery, t_max: f32) -> u32 {
+        match self {
+            Shape::Sphere(s) => s.crossings(&q.ray, t_max),
+            Shape::Triangle(tri) => tri.intersect(q, t_max).is_some() as u32,
+            Shape::Cylinder(c) => c.crossings(&q.ray, t_max),
+        }
+    }
+
+    pub fn surface(&self, q: &RayQuery, hit: &ShapeHit) -> SurfacePoint {
+        match (self, hit.detail) {
+            (Shape::Sphere(s), _) => {
+                let (point, normal, error) = s.surface(&q.ray, hit.t);
+                SurfacePoint {
+                    point,
+                    error,
+                    normal,
+                    uv: Sphere::uv(normal),
+                }
+            }
+            (Shape::Triangle(tri), HitDetail::Triangle { b }) => {
+                let (point, error) = tri.surface(&TriangleHit { t: hit.t, b });
+                SurfacePoint {
+                    point,
+                    error,
+                    normal: tri.normal,
+                    uv: (b[1], b[2]),
+                }
+            }
+            (Shape::Cylinder(c), HitDetail::Cylinder { part }) => {
+                let (point, normal, error) = c.surface(&q.ray, hit.t, part);
+                SurfacePoint {
+                    point,
+                    error,
+                    normal,
+                    uv: c.uv(point, part),
+                }
+            }
+            (shape, detail) => unreachable!("hit {detail:?} does not belong to {shape:?}"),
+        }
+    }
+
+    pub fn bounds(&self) -> Aabb {
+        match self {
+            Shape::Sphere(s) => s.bounds(),
+            Shape::Triangle(t) => t.bounds(),
+            Shape::Cylinder(c) => c.bounds(),
+        }
+    }
+}

@@ -1,0 +1,182 @@
+//! Spheres, intersected with the cancellation-free quadratic of Ray Tracing Gems chapter 7.
+
+use super::aabb::Aabb;
+use super::ray::Ray;
+use crate::numerics::{gamma, stable_quadratic_roots};
+use glam::Vec3;
+use std::f32::consts::PI;
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sphere {
+    pub center: Vec3,
+    pub radius: f32,
+}
+
+impl Sphere {
+    pub fn new(center: Vec3, radius: f32) -> Self {
+        Self { center, radius }
+    }
+
+    /// Both ray parameters where the ray's line meets the sphere, t0 ≤ t1.
+    ///
+    /// With f = o − c, the textbook discriminant b² − 4ac cancels catastrophically when the
+    /// sphere is small or far away. Instead the discriminant is a·(r² − |f⊥|²), where f⊥ is
+    /// the part of f perpendicular to the ray: it is computed from a short vector and keeps
+    /// its accuracy at any distance. The constant term |f|² − r² is formed as
+    /// (|f| − r)(|f| + r) so that it stays accurate for origins on the surface (secondary rays).
+    #[inline]
+    pub fn roots(&self, ray: &Ray) -> Option<(f32, f32)> {
+        let f = ray.origin - self.center;
+        let d = ray.dir;
+        let a = d.length_squared();
+        let beta = -f.dot(d);
+        let f_perp = f + d * (beta / a);
+        let r = self.radius;
+        let l = f_perp.length();
+        let disc = a * ((r - l) * (r + l));
+        let fl = f.length();
+        let c = (fl - r) * (fl + r);
+        stable_quadratic_roots(a, beta, c, disc)
+    }
+
+    /// The nearest t in (0, t_max) where the ray meets the sphere.
+    #[inline]
+    pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<f32> {
+        let (t0, t1) = self.roots(ray)?;
+        if t0 > 0.0 && t0 < t_max {
+            Some(t0)
+        } else if t1 > 0.0 && t1 < t_max {
+            Some(t1)
+        } else {
+            None
+        }
+    }
+
+    /// How many times the segment (0, t_max) of the ray crosses the surface.
+    #[inline]
+    pub fn crossings(&self, ray: &Ray, t_max: f32) -> u32 {
+        match self.roots(ray) {
+            Some((t0, t1)) => (t0 > 0.0 && t0 < t_max) as u32 + (t1 > 0.0 && t1 < t_max) as u32,
+            None => 0,
+        }
+    }
+
+    /// The outward unit normal, the hit point reprojected onto the sphere, and a bound on the
+    /// point's per-coordinate error.
+    #[inline]
+    pub fn surface(&self, ray: &Ray, t: f32) -> (Vec3, Vec3, Vec3) {
+        let offset = ray.at(t) - self.center;
+        let length = offset.length();
+        let normal = if length > 0.0 {
+            offset / length
+        } else {
+            -ray.dir.normalize_or(Vec3::Y)
+        };
+        // Reprojecting onto the sphere removes the error of o + t·d (which grows with t);
+        // what remains is the rounding of c + r·n.
+        let point = self.center + normal * self.radius;
+        let error = (self.center.abs() + (normal * self.radius).abs()) * gamma(5);
+        (point, normal, error)
+    }
+
+    /// Latitude-longitude coordinates of a unit normal: u runs east from longitude −180° at
+    /// u = 0 (longitude 0 faces +z, towards the default camera), v runs south from the north
+    /// pole (+y) at v = 0, so an equirectangular image maps with north up.
+    #[inline]
+    pub fn uv(normal: Vec3) -> (f32, f32) {
+        let u = 0.5 + normal.x.atan2(normal.z) / (2.0 * PI);
+        let v = 0.5 - normal.y.clamp(-1.0, 1.0).asin() / PI;
+        (u, v)
+    }
+
+    pub fn bounds(&self) -> Aabb {
+        let r = Vec3::splat(self.radius);
+        Aabb {
+            min: self.center - r,
+            max: self.center + r,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn unit_sphere_at(z: f32) -> Sphere {
+        Sphere::new(Vec3::new(0.0, 0.0, z), 1.0)
+    }
+
+    #[test]
+    fn ray_hits_front_of_sphere() {
+        let s = unit_sphere_at(-5.0);
+        let ray = Ray::new(Vec3::ZERO, -Vec3::Z);
+        let t = s.intersect(&ray, f32::INFINITY).unwrap();
+        assert_eq!(t, 4.0);
+        let (p, n, _) = s.surface(&ray, t);
+        assert_eq!(p, Vec3::new(0.0, 0.0, -4.0));
+        assert_eq!(n, Vec3::Z);
+    }
+
+    #[test]
+    fn ray_misses_beside_and_behind() {
+        let s = unit_sphere_at(-5.0);
+        assert!(
+            s.intersect(&Ray::new(Vec3::new(1.5, 0.0, 0.0), -Vec3::Z), f32::INFINITY)
+                .is_none()
+        );
+        assert!(
+            s.intersect(&Ray::new(Vec3::ZERO, Vec3::Z), f32::INFINITY)
+                .is_none()
+        );
+        assert!(s.intersect(&Ray::new(Vec3::ZERO, -Vec3::Z), 3.9).is_none());
+    }
+
+    #[test]
+    fn ray_from_inside_hits_the_far_side() {
+        let s = unit_sphere_at(0.0);
+        let ray = Ray::new(Vec3::ZERO, Vec3::new(0.0, 2.0, 0.0));
+        let t = s.intersect(&ray, f32::INFINITY).unwrap();
+        assert_eq!(t, 0.5);
+        let (_, n, _) = s.surface(&ray, t);
+        assert_eq!(n, Vec3::Y);
+        assert_eq!(s.crossings(&ray, f32::INFINITY), 1);
+    }
+
+    #[test]
+    fn crossings_counts_both_sides() {
+        let s = unit_sphere_at(-5.0);
+        let ray = Ray::new(Vec3::ZERO, -Vec3::Z);
+        assert_eq!(s.crossings(&ray, 100.0), 2);
+        assert_eq!(s.crossings(&ray, 5.0), 1);
+        assert_eq!(s.crossings(&ray, 1.0), 0);
+    }
+
+    #[test]
+    fn small_distant_sphere_is_hit_accurately() {
+        // Radius 1e-3 at distance 1e4: the textbook discriminant is lost to cancellation
+        // in f32 (b² ≈ 1e8 while r² = 1e-6).
+        let s = Sphere::new(Vec3::new(0.0, 0.0, -1.0e4), 1.0e-3);
+        let ray = Ray::new(Vec3::ZERO, -Vec3::Z);
+        let t = s.intersect(&ray, f32::INFINITY).unwrap();
+        assert!((t - (1.0e4 - 1.0e-3)).abs() <= 1.0e4 * 1e-6);
+        let grazing = Ray::new(Vec3::new(0.9e-3, 0.0, 0.0), -Vec3::Z);
+        assert!(s.intersect(&grazing, f32::INFINITY).is_some());
+        let outside = Ray::new(Vec3::new(1.1e-3, 0.0, 0.0), -Vec3::Z);
+        assert!(s.intersect(&outside, f32::INFINITY).is_none());
+    }
+
+    #[test]
+    fn uv_of_known_directions() {
+        let (u, v) = Sphere::uv(Vec3::Z);
+        assert!((u - 0.5).abs() < 1e-6 && (v - 0.5).abs() < 1e-6);
+        let (u, _) = Sphere::uv(Vec3::X);
+        assert!(
+            (u - 0.75).abs() < 1e-6,
+            "east of the facing meridian is to the right"
+        );
+        let (_, v) = Sphere::uv(Vec3::Y);
+        assert!(v.abs() < 1e-6);
+        let (_, v) = Sphere::uv(-Vec3::Y);
+        assert!((v - 1.0).abs() < 1e-6);
+    }
+}

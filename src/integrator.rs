@@ -1,0 +1,162 @@
+//! The Whitted integrator: Phong shading with shadow rays at each hit, plus recursive
+//! mirror-reflection and transmission (refraction) rays.
+
+use crate::geometry::{Ray, RayQuery};
+use crate::material::{reflect, refract};
+use crate::numerics::offset_ray_origin;
+use crate::scene::PreparedScene;
+use glam::Vec3;
+
+/// Rays traced, by kind.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct RayCounts {
+    pub primary: u64,
+    pub shadow: u64,
+    pub secondary: u64,
+}
+
+impl RayCounts {
+    pub fn total(&self) -> u64 {
+        self.primary + self.shadow + self.secondary
+    }
+}
+
+impl std::ops::Add for RayCounts {
+    type Output = RayCounts;
+    fn add(self, o: RayCounts) -> RayCounts {
+        RayCounts {
+            primary: self.primary + o.primary,
+            shadow: self.shadow + o.shadow,
+            secondary: self.secondary + o.secondary,
+        }
+    }
+}
+
+impl std::ops::AddAssign for RayCounts {
+    fn add_assign(&mut self, o: RayCounts) {
+        *self = *self + o;
+    }
+}
+
+/// A straight pass through a clear surface does not bend the ray, so it cannot start a
+/// cycle and does not count towards the bounce limit; this many in a row end the path.
+const MAX_STRAIGHT_CROSSINGS: u32 = 64;
+
+/// Traces rays through one prepared scene.
+pub struct Integrator<'a> {
+    scene: &'a PreparedScene,
+    /// A secondary ray whose contribution to the pixel is weighted below this is not traced.
+    /// 0 traces everything (the reference); 1/512 cannot change an 8-bit pixel by more than
+    /// rounding.
+    min_weight: f32,
+    pub counts: RayCounts,
+}
+
+impl<'a> Integrator<'a> {
+    pub fn new(scene: &'a PreparedScene, min_weight: f32) -> Self {
+        Self {
+            scene,
+            min_weight,
+            counts: RayCounts::default(),
+        }
+    }
+
+    /// The colour seen along a primary ray (unit direction).
+    #[inline]
+    pub fn trace_primary(&mut self, ray: Ray) -> Vec3 {
+        self.counts.primary += 1;
+        self.trace(ray, 0, 0, 1.0)
+    }
+
+    fn trace(&mut self, ray: Ray, depth: u32, straight: u32, weight: f32) -> Vec3 {
+        let scene = self.scene;
+        let q = RayQuery::new(ray);
+        let Some((hit, index)) = scene.intersect(&q, f32::INFINITY) else {
+            return scene.background;
+        };
+        let prim = &scene.primitives[index as usize];
+        let object = &scene.objects[prim.object as usize];
+        let material = &object.material;
+        let surface = prim.shape.surface(&q, &hit);
+        let entering = ray.dir.dot(surface.normal) < 0.0;
+        // Shade the side the ray arrives on.
+        let n = if entering {
+            surface.normal
+        } else {
+            -surface.normal
+        };
+        let p = surface.point;
+
+        let opacity = 1.0 - material.transparency;
+        let mut color = Vec3::ZERO;
+        if opacity > 0.0 || material.specular > 0.0 {
+            let uv = object.planar_uv.map_or(surface.uv, |f| f.uv(p));
+            let base = material.texture.eval(uv, p - object.origin);
+            let mut diffuse = base * scene.ambient * material.ambient;
+            let mut specular = Vec3::ZERO;
+            for light in &scene.lights {
+                let to_light = light.position - p;
+                let n_dot = n.dot(to_light);
+                if n_dot <= 0.0 {
+                    continue; // the light is behind this side: no shadow ray needed
+                }
+                let distance = to_light.length();
+                let l = to_light / distance;
+                let origin = offset_ray_origin(p, surface.error, n, l);
+                self.counts.shadow += 1;
+                // The shadow ray ends exactly at the light: t = 1 on (light − origin).
+                let shadow = RayQuery::new(Ray::new(origin, light.position - origin));
+                let visible = scene.transmittance(&shadow, 1.0);
+                if visible == Vec3::ZERO {
+                    continue;
+                }
+                let lit = visible * light.color;
+                diffuse += lit * base * (material.diffuse * n_dot / distance);
+                if material.specular > 0.0 {
+                    let r = reflect(-l, n);
+                    let r_dot_v = r.dot(-ray.dir).max(0.0);
+                    specular += lit * (material.specular * r_dot_v.powf(material.shininess));
+                }
+            }
+            // The highlight is light reflected at the surface: it does not fade with opacity.
+            color = diffuse * opacity + specular;
+        }
+
+        if depth >= scene.max_depth {
+            return color;
+        }
+        let reflectivity = material.reflectivity;
+        if reflectivity > 0.0 && weight * reflectivity >= self.min_weight {
+            let dir = reflect(ray.dir, n);
+            let origin = offset_ray_origin(p, surface.error, n, dir);
+            self.counts.secondary += 1;
+            color += self.trace(Ray::new(origin, dir), depth + 1, 0, weight * reflectivity)
+                * reflectivity;
+        }
+        let transparency = material.transparency;
+        if transparency > 0.0 && weight * transparency >= self.min_weight {
+            let bent = match material.eta {
+                Some(eta) if eta != 1.0 => {
+                    let ratio = if entering { 1.0 / eta } else { eta };
+                    // Past the critical angle the transmitted light is reflected inside.
+                    Some(refract(ray.dir, n, ratio).unwrap_or_else(|| reflect(ray.dir, n)))
+                }
+                _ => None,
+            };
+            let (dir, depth, straight) = match bent {
+                Some(d) => (d, depth + 1, 0),
+                None if straight < MAX_STRAIGHT_CROSSINGS => (ray.dir, depth, straight + 1),
+                None => return color,
+            };
+            let origin = offset_ray_origin(p, surface.error, n, dir);
+            self.counts.secondary += 1;
+            color += self.trace(
+                Ray::new(origin, dir),
+                depth,
+                straight,
+                weight * transparency,
+            ) * transparency;
+        }
+        color
+    }
+}

@@ -1,0 +1,21 @@
+//! prism: a fast and accurate Whitted-style CPU ray tracer.
+//!
+//! The library has no window dependency: it loads scenes, traces them pass by pass into an
+//! accumulator, and writes images. The `prism` binary adds the command line, the
+//! interactive viewer and the bench on top.
+
+pub mod camera;
+pub mod geometry;
+pub mod integrator;
+pub mod light;
+pub mod material;
+pub mod numerics;
+pub mod render;
+pub mod sampler;
+pub mod scene;
+pub mod texture;
+
+/// The seed scene, shipped with the crate.
+pub fn seed_scene_path() -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/seed.toml")
+}

@@ -1,0 +1,34 @@
+//! Turning a prepared scene into pixels: one subsample of every pixel per pass, summed in
+//! an accumulator. The command line, the viewer and the bench all run these same passes,
+//! so a one-shot render equals a finished progressive one by construction.
+
+pub mod accumulator;
+pub mod output;
+pub mod pass;
+pub mod progressive;
+pub mod settings;
+
+pub use accumulator::Accumulator;
+pub use output::{OutputError, PendingPng};
+pub use pass::{PassStats, render_pass};
+pub use progressive::{PassOutcome, ProgressiveRender};
+pub use settings::{AdaptiveSettings, RenderSettings, SettingsError};
+
+use crate::camera::Camera;
+use crate::scene::PreparedScene;
+use std::sync::Arc;
+
+/// Renders to convergence in one go; `on_pass` sees each finished pass.
+pub fn render(
+    scene: Arc<PreparedScene>,
+    camera: Camera,
+    settings: RenderSettings,
+    mut on_pass: impl FnMut(&ProgressiveRender, &PassStats),
+) -> ProgressiveRender {
+    let mut job = ProgressiveRender::new(scene, camera, settings);
+    let never = || false;
+    while let PassOutcome::Finished(stats) = job.step(&never) {
+        on_pass(&job, &stats);
+    }
+    job
+}

@@ -1,0 +1,72 @@
+//! One pass: subsample k of every (active) pixel, traced in parallel by bands of rows.
+
+use super::accumulator::Accumulator;
+use crate::camera::CameraRays;
+use crate::integrator::{Integrator, RayCounts};
+use crate::sampler::Sampler;
+use crate::scene::PreparedScene;
+use rayon::prelude::*;
+
+/// Rows per unit of parallel work: small enough to balance two cores and to notice a
+/// cancel request quickly, large enough to amortise the scheduling.
+pub const BAND_ROWS: usize = 4;
+
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PassStats {
+    pub rays: RayCounts,
+    pub pixels_traced: u64,
+    pub seconds: f64,
+}
+
+/// Adds subsample `pass` to every pixel whose `active` flag is set (all pixels when `active`
+/// is None). Each pixel depends only on its own position and the pass index, so the result
+/// is the same whatever the number of threads. Returns None if `cancelled()` turned true
+/// part-way, leaving the accumulator holding a partial pass.
+#[allow(clippy::too_many_arguments)]
+pub fn render_pass(
+    scene: &PreparedScene,
+    rays: &CameraRays,
+    sampler: &Sampler,
+    pass: u32,
+    min_weight: f32,
+    acc: &mut Accumulator,
+    active: Option<&[bool]>,
+    cancelled: &(dyn Fn() -> bool + Sync),
+) -> Option<PassStats> {
+    let start = std::time::Instant::now();
+    let width = acc.width as usize;
+    let band = width * BAND_ROWS;
+    let results: Vec<Option<(RayCounts, u64)>> = acc
+        .pixels
+        .par_chunks_mut(band)
+        .enumerate()
+        .map(|(band_index, pixels)| {
+            if cancelled() {
+                return None;
+            }
+            let mut integrator = Integrator::new(scene, min_weight);
+            let mut traced = 0u64;
+            for (i, sum) in pixels.iter_mut().enumerate() {
+                let index = band_index * band + i;
+                if active.is_some_and(|a| !a[index]) {
+                    continue;
+                }
+                let (x, y) = ((index % width) as u32, (index / width) as u32);
+                let (dx, dy) = sampler.offset(x, y, pass);
+                let ray = rays.ray(x as f32 + dx, y as f32 + dy);
+                let color = integrator.trace_primary(ray);
+                sum.add(color.clamp(glam::Vec3::ZERO, glam::Vec3::ONE));
+                traced += 1;
+            }
+            Some((integrator.counts, traced))
+        })
+        .collect();
+    let mut stats = PassStats::default();
+    for r in results {
+        let (counts, traced) = r?;
+        stats.rays += counts;
+        stats.pixels_traced += traced;
+    }
+    stats.seconds = start.elapsed().as_secs_f64();
+    Some(stats)
+}

@@ -1,0 +1,202 @@
+//! The progressive render: a state machine that adds one pass at a time, can be cancelled
+//! and restarted at any moment, and knows when it has converged.
+
+use super::accumulator::Accumulator;
+use super::pass::{PassStats, render_pass};
+use super::settings::RenderSettings;
+use crate::camera::{Camera, CameraRays};
+use crate::integrator::RayCounts;
+use crate::sampler::Sampler;
+use crate::scene::PreparedScene;
+use std::sync::Arc;
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum PassOutcome {
+    /// One more subsample was added to every active pixel.
+    Finished(PassStats),
+    /// The pass stopped part-way; the next step starts over from an empty image.
+    Cancelled,
+    /// Nothing left to do.
+    Converged,
+}
+
+pub struct ProgressiveRender {
+    scene: Arc<PreparedScene>,
+    camera: Camera,
+    settings: RenderSettings,
+    sampler: Sampler,
+    rays: CameraRays,
+    accumulator: Accumulator,
+    /// Pixels still refining (all of them unless adaptive sampling has stopped some).
+    active: Vec<bool>,
+    active_count: usize,
+    passes_done: u32,
+    /// The accumulator holds a partial pass and must be cleared before the next one.
+    dirty: bool,
+    rays_traced: RayCounts,
+    seconds: f64,
+}
+
+impl ProgressiveRender {
+    /// `settings` must have passed `RenderSettings::validate`.
+    pub fn new(scene: Arc<PreparedScene>, camera: Camera, settings: RenderSettings) -> Self {
+        debug_assert!(settings.validate().is_ok());
+        let pixels = settings.width as usize * settings.height as usize;
+        Self {
+            sampler: Sampler::new(settings.aa, settings.layout),
+            rays: camera.rays(settings.width, settings.height),
+            accumulator: Accumulator::new(settings.width, settings.height),
+            active: vec![true; pixels],
+            active_count: pixels,
+            scene,
+            camera,
+            settings,
+            passes_done: 0,
+            dirty: false,
+            rays_traced: RayCounts::default(),
+            seconds: 0.0,
+        }
+    }
+
+    /// Throws away all samples; the next step starts at pass 0.
+    pub fn restart(&mut self) {
+        self.accumulator.clear();
+        self.active.fill(true);
+        self.active_count = self.active.len();
+        self.passes_done = 0;
+        self.dirty = false;
+        self.rays_traced = RayCounts::default();
+        self.seconds = 0.0;
+    }
+
+    pub fn set_scene(&mut self, scene: Arc<PreparedScene>) {
+        self.scene = scene;
+        self.restart();
+    }
+
+    pub fn set_camera(&mut self, camera: Camera) {
+        self.camera = camera;
+        self.rays = camera.rays(self.settings.width, self.settings.height);
+        self.restart();
+    }
+
+    /// New settings (size, anti-aliasing, adaptivity); `settings` must be valid.
+    pub fn set_settings(&mut self, settings: RenderSettings) {
+        debug_assert!(settings.validate().is_ok());
+        *self = Self::new(self.scene.clone(), self.camera, settings);
+    }
+
+    /// Traces the next pass unless converged; checks `cancelled` between bands of rows.
+    pub fn step(&mut self, cancelled: &(dyn Fn() -> bool + Sync)) -> PassOutcome {
+        if self.dirty {
+            self.restart();
+        }
+        if self.is_converged() {
+            return PassOutcome::Converged;
+        }
+        let active = self.settings.adaptive.map(|_| self.active.as_slice());
+        let Some(stats) = render_pass(
+            &self.scene,
+            &self.rays,
+            &self.sampler,
+            self.passes_done,
+            self.settings.min_weight,
+            &mut self.accumulator,
+            active,
+            cancelled,
+        ) else {
+            self.dirty = true;
+            return PassOutcome::Cancelled;
+        };
+        self.passes_done += 1;
+        self.rays_traced += stats.rays;
+        self.seconds += stats.seconds;
+        self.update_active();
+        PassOutcome::Finished(stats)
+    }
+
+    /// Adaptive sampling: a pixel stops once it has its minimum samples and its standard
+    /// error is within tolerance, and its eight neighbours have stopped too (so thin edges
+    /// that one pixel only grazes keep refining). A stopped pixel never restarts, so every
+    /// active pixel holds exactly subsamples 0 .. passes_done.
+    fn update_active(&mut self) {
+        let Some(adaptive) = self.settings.adaptive else {
+            return;
+        };
+        if self.passes_done < adaptive.min_samples {
+            return;
+        }
+        let (w, h) = (self.settings.width as usize, self.settings.height as usize);
+        let settled: Vec<bool> = self
+            .accumulator
+            .pixels
+            .iter()
+            .map(|p| p.standard_error() <= adaptive.tolerance)
+            .collect();
+        let mut count = 0;
+        for y in 0..h {
+            for x in 0..w {
+                let i = y * w + x;
+                if !self.active[i] {
+                    continue;
+                }
+                let mut all_settled = true;
+                for ny in y.saturating_sub(1)..(y + 2).min(h) {
+                    for nx in x.saturating_sub(1)..(x + 2).min(w) {
+                        all_settled &= settled[ny * w + nx];
+                    }
+                }
+                self.active[i] = !all_settled;
+                count += self.active[i] as usize;
+            }
+        }
+        self.active_count = count;
+    }
+
+    pub fn is_converged(&self) -> bool {
+        self.passes_done >= self.settings.total_passes() || self.active_count == 0
+    }
+
+    pub fn passes_done(&self) -> u32 {
+        self.passes_done
+    }
+
+    pub fn total_passes(&self) -> u32 {
+        self.settings.total_passes()
+    }
+
+    pub fn accumulator(&self) -> &Accumulator {
+        &self.accumulator
+    }
+
+    /// Pixels that will receive the next pass.
+    pub fn active_pixels(&self) -> usize {
+        self.active_count
+    }
+
+    pub fn rays_traced(&self) -> RayCounts {
+        self.rays_traced
+    }
+
+    /// Time spent tracing finished passes since the last restart.
+    pub fn seconds(&self) -> f64 {
+        self.seconds
+    }
+
+    pub fn settings(&self) -> &RenderSettings {
+        &self.settings
+    }
+
+    pub fn camera(&self) -> &Camera {
+        &self.camera
+    }
+
+    pub fn scene(&self) -> &Arc<PreparedScene> {
+        &self.scene
+    }
+
+    /// Samples per pixel of the image as it stands (the mean over all pixels).
+    pub fn samples_per_pixel(&self) -> f64 {
+        self.accumulator.sample_count() as f64 / self.active.len().max(1) as f64
+    }
+}

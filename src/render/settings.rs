@@ -1,0 +1,104 @@
+//! What a render is asked to do, checked before any work starts.
+
+use crate::sampler::SampleLayout;
+use thiserror::Error;
+
+pub const MAX_AA: u32 = 8;
+pub const MAX_SIDE: u32 = 16384;
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RenderSettings {
+    pub width: u32,
+    pub height: u32,
+    /// Anti-aliasing level N: N×N subsamples per pixel, one per pass.
+    pub aa: u32,
+    pub layout: SampleLayout,
+    /// Secondary rays weighted below this are skipped (0 traces all).
+    pub min_weight: f32,
+    pub adaptive: Option<AdaptiveSettings>,
+}
+
+/// Stop refining a pixel once its subsamples agree.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AdaptiveSettings {
+    /// A pixel stops when the standard error of its mean luminance falls below this
+    /// (on the 0..1 scale; 1/255 is one 8-bit step).
+    pub tolerance: f32,
+    /// Every pixel gets at least this many subsamples before it may stop.
+    pub min_samples: u32,
+}
+
+impl Default for AdaptiveSettings {
+    fn default() -> Self {
+        Self {
+            tolerance: 1.0 / 512.0,
+            min_samples: 4,
+        }
+    }
+}
+
+/// The skip threshold that can never change an 8-bit pixel beyond rounding.
+pub const DEFAULT_MIN_WEIGHT: f32 = 1.0 / 512.0;
+
+impl RenderSettings {
+    pub fn new(width: u32, height: u32, aa: u32) -> Self {
+        Self {
+            width,
+            height,
+            aa,
+            layout: SampleLayout::Stratified,
+            min_weight: DEFAULT_MIN_WEIGHT,
+            adaptive: None,
+        }
+    }
+
+    pub fn validate(&self) -> Result<(), SettingsError> {
+        if self.width == 0 || self.height == 0 {
+            return Err(SettingsError::ZeroSize {
+                width: self.width,
+                height: self.height,
+            });
+        }
+        if self.width > MAX_SIDE || self.height > MAX_SIDE {
+            return Err(SettingsError::TooLarge {
+                width: self.width,
+                height: self.height,
+            });
+        }
+        if !(1..=MAX_AA).contains(&self.aa) {
+            return Err(SettingsError::Aa(self.aa));
+        }
+        if !(self.min_weight.is_finite() && (0.0..1.0).contains(&self.min_weight)) {
+            return Err(SettingsError::MinWeight(self.min_weight));
+        }
+        if let Some(a) = self.adaptive {
+            if !(a.tolerance.is_finite() && a.tolerance > 0.0) {
+                return Err(SettingsError::Tolerance(a.tolerance));
+            }
+            if a.min_samples == 0 {
+                return Err(SettingsError::MinSamples);
+            }
+        }
+        Ok(())
+    }
+
+    pub fn total_passes(&self) -> u32 {
+        self.aa * self.aa
+    }
+}
+
+#[derive(Debug, Error, PartialEq)]
+pub enum SettingsError {
+    #[error("image size {width}×{height}: width and height must be at least 1")]
+    ZeroSize { width: u32, height: u32 },
+    #[error("image size {width}×{height}: width and height must be at most {MAX_SIDE}")]
+    TooLarge { width: u32, height: u32 },
+    #[error("anti-aliasing level {0}: must be 1 to {MAX_AA} (N×N subsamples per pixel)")]
+    Aa(u32),
+    #[error("minimum ray weight {0}: must be a number in [0, 1)")]
+    MinWeight(f32),
+    #[error("adaptive tolerance {0}: must be a number greater than zero")]
+    Tolerance(f32),
+    #[error("adaptive minimum samples must be at least 1")]
+    MinSamples,
+}

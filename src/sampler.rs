@@ -1,0 +1,155 @@
+//! Where subsample k of a pixel lies. One function serves the one-shot render, the
+//! progressive viewer and the bench, so that every path traces exactly the same rays.
+
+/// How subsamples sit inside their grid cells.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum SampleLayout {
+    /// Each subsample at a hashed random position inside its own cell of the N×N grid:
+    /// stratified, different for every pixel, so no regular aliasing pattern survives.
+    #[default]
+    Stratified,
+    /// Each subsample at the centre of its cell, as the seed's 2×2 supersampling does.
+    Grid,
+}
+
+/// The N×N subsample pattern for anti-aliasing level N.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Sampler {
+    n: u32,
+    layout: SampleLayout,
+    /// Cell (column, row) of subsample k, ordered so that every prefix is spread evenly
+    /// over the pixel: the progressive image improves evenly pass by pass.
+    order: Vec<(u32, u32)>,
+}
+
+impl Sampler {
+    /// Level `n` must be at least 1.
+    pub fn new(n: u32, layout: SampleLayout) -> Self {
+        assert!(n >= 1, "anti-aliasing level must be at least 1");
+        Self {
+            n,
+            layout,
+            order: farthest_point_order(n),
+        }
+    }
+
+    pub fn level(&self) -> u32 {
+        self.n
+    }
+
+    pub fn layout(&self) -> SampleLayout {
+        self.layout
+    }
+
+    /// N²: the number of subsamples a converged pixel holds.
+    pub fn samples_per_pixel(&self) -> u32 {
+        self.n * self.n
+    }
+
+    /// The position of subsample `k` inside pixel (x, y), in [0, 1)².
+    #[inline]
+    pub fn offset(&self, x: u32, y: u32, k: u32) -> (f32, f32) {
+        let (cx, cy) = self.order[k as usize];
+        let inv = 1.0 / self.n as f32;
+        let (jx, jy) = match self.layout {
+            SampleLayout::Grid => (0.5, 0.5),
+            SampleLayout::Stratified => {
+                let h = hash(x ^ hash(y ^ hash(k)));
+                (unit(h), unit(hash(h)))
+            }
+        };
+        ((cx as f32 + jx) * inv, (cy as f32 + jy) * inv)
+    }
+}
+
+/// Greedy farthest-point order of the cells of an n×n grid, on the torus (neighbouring
+/// pixels continue the pattern): each next cell is the one farthest from all chosen ones,
+/// ties broken by the lowest index so the order is fixed.
+fn farthest_point_order(n: u32) -> Vec<(u32, u32)> {
+    let cells: Vec<(u32, u32)> = (0..n * n).map(|i| (i % n, i / n)).collect();
+    let torus = |a: (u32, u32), b: (u32, u32)| {
+        let dx = a.0.abs_diff(b.0).min(n - a.0.abs_diff(b.0));
+        let dy = a.1.abs_diff(b.1).min(n - a.1.abs_diff(b.1));
+        dx * dx + dy * dy
+    };
+    let mut order = Vec::with_capacity(cells.len());
+    let mut nearest = vec![u32::MAX; cells.len()];
+    let mut chosen = vec![false; cells.len()];
+    let mut next = ((n / 2) * n + n / 2) as usize;
+    for _ in 0..cells.len() {
+        chosen[next] = true;
+        order.push(cells[next]);
+        for (i, &c) in cells.iter().enumerate() {
+            nearest[i] = nearest[i].min(torus(c, cells[next]));
+        }
+        next = (0..cells.len())
+            .filter(|&i| !chosen[i])
+            .max_by(|&a, &b| nearest[a].cmp(&nearest[b]).then(b.cmp(&a)))
+            .unwrap_or(0);
+    }
+    order
+}
+
+/// A 32-bit integer hash with good avalanche ("lowbias32", C. Wellons).
+#[inline]
+fn hash(mut x: u32) -> u32 {
+    x ^= x >> 16;
+    x = x.wrapping_mul(0x7feb_352d);
+    x ^= x >> 15;
+    x = x.wrapping_mul(0x846c_a68b);
+    x ^= x >> 16;
+    x
+}
+
+/// The top 24 bits of `h` as a float in [0, 1).
+#[inline]
+fn unit(h: u32) -> f32 {
+    (h >> 8) as f32 * (1.0 / (1u32 << 24) as f32)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_cell_exactly_once() {
+        for n in 1..=8 {
+            let s = Sampler::new(n, SampleLayout::Stratified);
+            let mut seen = vec![false; (n * n) as usize];
+            for k in 0..n * n {
+                let (x, y) = s.offset(17, 42, k);
+                assert!((0.0..1.0).contains(&x) && (0.0..1.0).contains(&y));
+                let cell = ((y * n as f32) as u32 * n + (x * n as f32) as u32) as usize;
+                assert!(!seen[cell], "n={n}: cell {cell} twice");
+                seen[cell] = true;
+            }
+        }
+    }
+
+    #[test]
+    fn grid_layout_uses_cell_centres() {
+        let s = Sampler::new(2, SampleLayout::Grid);
+        let mut offsets: Vec<(f32, f32)> = (0..4).map(|k| s.offset(3, 4, k)).collect();
+        offsets.sort_by(|a, b| a.partial_cmp(b).unwrap());
+        assert_eq!(
+            offsets,
+            vec![(0.25, 0.25), (0.25, 0.75), (0.75, 0.25), (0.75, 0.75)]
+        );
+    }
+
+    #[test]
+    fn first_subsample_is_central_and_second_is_far() {
+        let s = Sampler::new(4, SampleLayout::Grid);
+        assert_eq!(s.offset(0, 0, 0), (0.625, 0.625));
+        let (x, y) = s.offset(0, 0, 1);
+        let d = |a: f32, b: f32| (a - b).abs().min(1.0 - (a - b).abs());
+        assert!(d(x, 0.625) >= 0.5 && d(y, 0.625) >= 0.5);
+    }
+
+    #[test]
+    fn positions_are_deterministic_and_vary_by_pixel() {
+        let s = Sampler::new(3, SampleLayout::Stratified);
+        assert_eq!(s.offset(5, 6, 2), s.offset(5, 6, 2));
+        assert_ne!(s.offset(5, 6, 2), s.offset(6, 5, 2));
+    }
+}

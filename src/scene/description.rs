@@ -1,0 +1,130 @@
+//! A validated scene: what is where, made of what. Every value here has passed the checks
+//! of the scene file loader, so preparing a `Scene` cannot fail.
+
+use crate::camera::Camera;
+use crate::light::PointLight;
+use crate::material::Material;
+use glam::Vec3;
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scene {
+    pub camera: Camera,
+    pub render: RenderDefaults,
+    pub background: Vec3,
+    /// Ambient light, multiplied by each material's `ambient` factor and colour.
+    pub ambient: Vec3,
+    pub lights: Vec<PointLight>,
+    pub objects: Vec<SceneObject>,
+}
+
+/// Image settings a scene file may suggest; the command line overrides them.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RenderDefaults {
+    pub width: u32,
+    pub height: u32,
+    pub aa: u32,
+    /// The most secondary bounces (reflection or refraction) along one path.
+    pub max_depth: u32,
+}
+
+impl Default for RenderDefaults {
+    fn default() -> Self {
+        Self {
+            width: 800,
+            height: 600,
+            aa: 2,
+            max_depth: 5,
+        }
+    }
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct SceneObject {
+    pub name: String,
+    pub shape: ShapeDesc,
+    pub material: Material,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum ShapeDesc {
+    Sphere {
+        center: Vec3,
+        radius: f32,
+    },
+    /// Along +y from the centre of its bottom cap, closed at both ends.
+    Cylinder {
+        base: Vec3,
+        radius: f32,
+        height: f32,
+    },
+    /// A planar convex polygon, corners in order.
+    Polygon {
+        vertices: Vec<Vec3>,
+    },
+    Triangle {
+        vertices: [Vec3; 3],
+    },
+    /// Four corners; the faces are oriented outwards whatever their order.
+    Tetrahedron {
+        vertices: [Vec3; 4],
+    },
+}
+
+impl ShapeDesc {
+    /// The object's own origin, to which procedural textures are attached.
+    pub fn origin(&self) -> Vec3 {
+        match self {
+            ShapeDesc::Sphere { center, .. } => *center,
+            ShapeDesc::Cylinder { base, .. } => *base,
+            ShapeDesc::Polygon { vertices } => vertices[0],
+            ShapeDesc::Triangle { vertices } => vertices[0],
+            ShapeDesc::Tetrahedron { vertices } => vertices.iter().sum::<Vec3>() / 4.0,
+        }
+    }
+
+    fn transformed(&self, scale: f32, offset: Vec3) -> ShapeDesc {
+        let p = |v: Vec3| v * scale + offset;
+        match self {
+            ShapeDesc::Sphere { center, radius } => ShapeDesc::Sphere {
+                center: p(*center),
+                radius: radius * scale,
+            },
+            ShapeDesc::Cylinder {
+                base,
+                radius,
+                height,
+            } => ShapeDesc::Cylinder {
+                base: p(*base),
+                radius: radius * scale,
+                height: height * scale,
+            },
+            ShapeDesc::Polygon { vertices } => ShapeDesc::Polygon {
+                vertices: vertices.iter().map(|&v| p(v)).collect(),
+            },
+            ShapeDesc::Triangle { vertices } => ShapeDesc::Triangle {
+                vertices: vertices.map(p),
+            },
+            ShapeDesc::Tetrahedron { vertices } => ShapeDesc::Tetrahedron {
+                vertices: vertices.map(p),
+            },
+        }
+    }
+}
+
+impl Scene {
+    /// The same scene uniformly scaled about the origin by `scale`, then moved by `offset`,
+    /// camera and lights included: it must render the same image (the numerical stress
+    /// tests rely on this). Lights do not fall off with distance, so their colours stay.
+    pub fn transformed(&self, scale: f32, offset: Vec3) -> Scene {
+        let mut scene = self.clone();
+        scene.camera.eye = self.camera.eye * scale + offset;
+        for light in &mut scene.lights {
+            light.position = light.position * scale + offset;
+        }
+        for object in &mut scene.objects {
+            object.shape = object.shape.transformed(scale, offset);
+            object.material.texture = object.material.texture.scaled(scale);
+        }
+        scene
+    }
+}

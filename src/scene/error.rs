@@ -1,0 +1,61 @@
+//! Errors of loading a scene, each naming the file, the place in it, and the problem.
+
+use std::path::PathBuf;
+use thiserror::Error;
+
+#[derive(Debug, Error)]
+pub enum SceneError {
+    #[error("{}: cannot read the scene file: {source}", path.display())]
+    Read {
+        path: PathBuf,
+        source: std::io::Error,
+    },
+    /// TOML syntax, an unknown or missing field, a value of the wrong type.
+    #[error("{}:{line}:{column}: {message}", path.display())]
+    Syntax {
+        path: PathBuf,
+        line: usize,
+        column: usize,
+        message: String,
+    },
+    /// A well-formed value that makes no sense: a negative radius, an eta of zero, …
+    #[error("{}:{line}: {item}: {message}", path.display())]
+    Invalid {
+        path: PathBuf,
+        line: usize,
+        item: String,
+        message: String,
+    },
+}
+
+impl SceneError {
+    /// The 1-based line the error points at, if any.
+    pub fn line(&self) -> Option<usize> {
+        match self {
+            SceneError::Read { .. } => None,
+            SceneError::Syntax { line, .. } | SceneError::Invalid { line, .. } => Some(*line),
+        }
+    }
+}
+
+/// 1-based line and column of byte `offset` in `source`.
+pub(crate) fn line_column(source: &str, offset: usize) -> (usize, usize) {
+    let offset = offset.min(source.len());
+    let before = &source[..offset];
+    let line = before.matches('\n').count() + 1;
+    let column = before.rfind('\n').map_or(offset, |nl| offset - nl - 1) + 1;
+    (line, column)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn line_and_column_of_offsets() {
+        let src = "a = 1\nbb = 2\n";
+        assert_eq!(line_column(src, 0), (1, 1));
+        assert_eq!(line_column(src, 6), (2, 1));
+        assert_eq!(line_column(src, 8), (2, 3));
+    }
+}

@@ -1,0 +1,676 @@
+//! The TOML scene format (documented in docs/scene-format.md): parsing, and validation that
+//! names the file, the line and the field of every problem.
+
+use super::description::{RenderDefaults, Scene, SceneObject, ShapeDesc};
+use super::error::{SceneError, line_column};
+use crate::camera::{Camera, MAX_VFOV, MIN_VFOV};
+use crate::light::PointLight;
+use crate::material::Material;
+use crate::texture::{ImageTexture, Texture};
+use glam::Vec3;
+use serde::Deserialize;
+use std::collections::{BTreeMap, HashMap};
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use toml::Spanned;
+
+type V3 = [f32; 3];
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SceneFile {
+    camera: Spanned<CameraDef>,
+    render: Option<Spanned<RenderDef>>,
+    #[serde(default)]
+    lights: Vec<Spanned<LightDef>>,
+    #[serde(default)]
+    textures: BTreeMap<String, Spanned<TextureDef>>,
+    #[serde(default)]
+    materials: BTreeMap<String, Spanned<MaterialDef>>,
+    #[serde(default)]
+    spheres: Vec<Spanned<SphereDef>>,
+    #[serde(default)]
+    cylinders: Vec<Spanned<CylinderDef>>,
+    #[serde(default)]
+    polygons: Vec<Spanned<PolygonDef>>,
+    #[serde(default)]
+    triangles: Vec<Spanned<TriangleDef>>,
+    #[serde(default)]
+    tetrahedra: Vec<Spanned<TetrahedronDef>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct CameraDef {
+    eye: V3,
+    look_at: Option<V3>,
+    direction: Option<V3>,
+    yaw: Option<f32>,
+    pitch: Option<f32>,
+    fov: f32,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RenderDef {
+    width: Option<i64>,
+    height: Option<i64>,
+    aa: Option<i64>,
+    max_depth: Option<i64>,
+    background: Option<V3>,
+    ambient: Option<V3>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct LightDef {
+    position: V3,
+    color: Option<V3>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TextureDef {
+    #[serde(rename = "type")]
+    kind: String,
+    path: Option<String>,
+    colors: Option<[V3; 2]>,
+    size: Option<f32>,
+    axes: Option<String>,
+    width: Option<f32>,
+    direction: Option<V3>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct MaterialDef {
+    color: Option<V3>,
+    texture: Option<String>,
+    ambient: Option<f32>,
+    diffuse: Option<f32>,
+    specular: Option<f32>,
+    shininess: Option<f32>,
+    reflectivity: Option<f32>,
+    transparency: Option<f32>,
+    eta: Option<f32>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SphereDef {
+    name: Option<String>,
+    center: V3,
+    radius: f32,
+    material: Option<String>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct CylinderDef {
+    name: Option<String>,
+    base: V3,
+    radius: f32,
+    height: f32,
+    material: Option<String>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct PolygonDef {
+    name: Option<String>,
+    vertices: Vec<V3>,
+    material: Option<String>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TriangleDef {
+    name: Option<String>,
+    vertices: [V3; 3],
+    material: Option<String>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TetrahedronDef {
+    name: Option<String>,
+    vertices: [V3; 4],
+    material: Option<String>,
+}
+
+/// Reads and validates the scene file at `path`; image textures are found relative to it.
+pub fn load_scene(path: &Path) -> Result<Scene, SceneError> {
+    let source = std::fs::read_to_string(path).map_err(|source| SceneError::Read {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let base = path.parent().unwrap_or(Path::new("."));
+    parse_scene(&source, path, base)
+}
+
+/// Validates scene text; `path` names it in messages, `base_dir` resolves texture paths.
+pub fn parse_scene(source: &str, path: &Path, base_dir: &Path) -> Result<Scene, SceneError> {
+    let file: SceneFile = toml::from_str(source).map_err(|e| {
+        let (line, column) = line_column(source, e.span().map_or(0, |s| s.start));
+        SceneError::Syntax {
+            path: path.to_path_buf(),
+            line,
+            column,
+            message: e.message().trim().to_string(),
+        }
+    })?;
+    let v = Validator {
+        path: path.to_path_buf(),
+        source,
+        base_dir,
+    };
+    v.scene(file)
+}
+
+struct Validator<'a> {
+    path: PathBuf,
+    source: &'a str,
+    base_dir: &'a Path,
+}
+
+/// Where a problem is: the span of the table it is in, and how to name that table.
+struct Item<'s> {
+    span: Range<usize>,
+    name: &'s str,
+}
+
+impl Validator<'_> {
+    fn error(&self, at: &Item, message: impl Into<String>) -> SceneError {
+        let (line, _) = line_column(self.source, at.span.start);
+        SceneError::Invalid {
+            path: self.path.clone(),
+            line,
+            item: at.name.to_string(),
+            message: message.into(),
+        }
+    }
+
+    fn number(&self, at: &Item, field: &str, v: f32) -> Result<f32, SceneError> {
+        if v.is_finite() {
+            Ok(v)
+        } else {
+            Err(self.error(at, format!("`{field}` must be a finite number, got {v}")))
+        }
+    }
+
+    fn positive(&self, at: &Item, field: &str, v: f32) -> Result<f32, SceneError> {
+        let v = self.number(at, field, v)?;
+        if v > 0.0 {
+            Ok(v)
+        } else {
+            Err(self.error(at, format!("`{field}` must be greater than zero, got {v}")))
+        }
+    }
+
+    fn in_range(
+        &self,
+        at: &Item,
+        field: &str,
+        v: f32,
+        lo: f32,
+        hi: f32,
+    ) -> Result<f32, SceneError> {
+        let v = self.number(at, field, v)?;
+        if (lo..=hi).contains(&v) {
+            Ok(v)
+        } else {
+            Err(self.error(at, format!("`{field}` must lie in [{lo}, {hi}], got {v}")))
+        }
+    }
+
+    fn point(&self, at: &Item, field: &str, v: V3) -> Result<Vec3, SceneError> {
+        if v.iter().all(|c| c.is_finite()) {
+            Ok(Vec3::from(v))
+        } else {
+            Err(self.error(at, format!("`{field}` must hold finite numbers, got {v:?}")))
+        }
+    }
+
+    fn color(&self, at: &Item, field: &str, v: V3) -> Result<Vec3, SceneError> {
+        let c = self.point(at, field, v)?;
+        if c.min_element() >= 0.0 {
+            Ok(c)
+        } else {
+            Err(self.error(at, format!("`{field}` must not be negative, got {v:?}")))
+        }
+    }
+
+    fn count(&self, at: &Item, field: &str, v: i64, lo: i64, hi: i64) -> Result<u32, SceneError> {
+        if (lo..=hi).contains(&v) {
+            Ok(v as u32)
+        } else {
+            Err(self.error(at, format!("`{field}` must lie in {lo}..={hi}, got {v}")))
+        }
+    }
+
+    fn scene(&self, file: SceneFile) -> Result<Scene, SceneError> {
+        let camera = self.camera(&file.camera)?;
+        let (render, background, ambient) = self.render(file.render.as_ref())?;
+        let lights = file
+            .lights
+            .iter()
+            .enumerate()
+            .map(|(i, l)| {
+                let name = format!("lights[{i}]");
+                let at = Item {
+                    span: l.span(),
+                    name: &name,
+                };
+                let l = l.get_ref();
+                Ok(PointLight {
+                    position: self.point(&at, "position", l.position)?,
+                    color: self.color(&at, "color", l.color.unwrap_or([1.0; 3]))?,
+                })
+            })
+            .collect::<Result<Vec<_>, SceneError>>()?;
+        let mut images = HashMap::new();
+        let textures = file
+            .textures
+            .iter()
+            .map(|(name, t)| Ok((name.clone(), self.texture(name, t, &mut images)?)))
+            .collect::<Result<HashMap<_, _>, SceneError>>()?;
+        let materials = file
+            .materials
+            .iter()
+            .map(|(name, m)| Ok((name.clone(), self.material(name, m, &textures)?)))
+            .collect::<Result<HashMap<_, _>, SceneError>>()?;
+
+        let mut objects = Vec::new();
+        let mut add = |kind: &str,
+                       i: usize,
+                       span: Range<usize>,
+                       name: &Option<String>,
+                       material: &Option<String>,
+                       shape: &dyn Fn(&Item) -> Result<ShapeDesc, SceneError>|
+         -> Result<(), SceneError> {
+            let label = match name {
+                Some(n) => format!("{kind}[{i}] \"{n}\""),
+                None => format!("{kind}[{i}]"),
+            };
+            let at = Item { span, name: &label };
+            let material = match material {
+                None => Material::default(),
+                Some(m) => materials.get(m).cloned().ok_or_else(|| {
+                    self.error(&at, format!("no material named \"{m}\" (see [materials])"))
+                })?,
+            };
+            objects.push(SceneObject {
+                name: name.clone().unwrap_or_else(|| format!("{kind} {i}")),
+                shape: shape(&at)?,
+                material,
+            });
+            Ok(())
+        };
+        for (i, s) in file.spheres.iter().enumerate() {
+            let d = s.get_ref();
+            add("spheres", i, s.span(), &d.name, &d.material, &|at| {
+                Ok(ShapeDesc::Sphere {
+                    center: self.point(at, "center", d.center)?,
+                    radius: self.positive(at, "radius", d.radius)?,
+                })
+            })?;
+        }
+        for (i, c) in file.cylinders.iter().enumerate() {
+            let d = c.get_ref();
+            add("cylinders", i, c.span(), &d.name, &d.material, &|at| {
+                Ok(ShapeDesc::Cylinder {
+                    base: self.point(at, "base", d.base)?,
+                    radius: self.positive(at, "radius", d.radius)?,
+                    height: self.positive(at, "height", d.height)?,
+                })
+            })?;
+        }
+        for (i, p) in file.polygons.iter().enumerate() {
+            let d = p.get_ref();
+            add("polygons", i, p.span(), &d.name, &d.material, &|at| {
+                let vertices = self.vertices(at, &d.vertices)?;
+                check_polygon(&vertices).map_err(|m| self.error(at, m))?;
+                Ok(ShapeDesc::Polygon { vertices })
+            })?;
+        }
+        for (i, t) in file.triangles.iter().enumerate() {
+            let d = t.get_ref();
+            add("triangles", i, t.span(), &d.name, &d.material, &|at| {
+                let v = self.vertices(at, &d.vertices)?;
+                check_polygon(&v).map_err(|m| self.error(at, m))?;
+                Ok(ShapeDesc::Triangle {
+                    vertices: [v[0], v[1], v[2]],
+                })
+            })?;
+        }
+        for (i, t) in file.tetrahedra.iter().enumerate() {
+            let d = t.get_ref();
+            add("tetrahedra", i, t.span(), &d.name, &d.material, &|at| {
+                let v = self.vertices(at, &d.vertices)?;
+                let extent = Aabb3::of(&v);
+                let volume6 = (v[1] - v[0]).cross(v[2] - v[0]).dot(v[3] - v[0]).abs();
+                if volume6.is_nan() || volume6 <= 1e-5 * extent.powi(3) {
+                    return Err(self.error(at, "the four vertices lie in one plane (no volume)"));
+                }
+                Ok(ShapeDesc::Tetrahedron {
+                    vertices: [v[0], v[1], v[2], v[3]],
+                })
+            })?;
+        }
+        Ok(Scene {
+            camera,
+            render,
+            background,
+            ambient,
+            lights,
+            objects,
+        })
+    }
+
+    fn vertices(&self, at: &Item, vs: &[V3]) -> Result<Vec<Vec3>, SceneError> {
+        vs.iter()
+            .enumerate()
+            .map(|(i, &v)| self.point(at, &format!("vertices[{i}]"), v))
+            .collect()
+    }
+
+    fn camera(&self, c: &Spanned<CameraDef>) -> Result<Camera, SceneError> {
+        let at = Item {
+            span: c.span(),
+            name: "camera",
+        };
+        let c = c.get_ref();
+        let eye = self.point(&at, "eye", c.eye)?;
+        let vfov = self.in_range(&at, "fov", c.fov, MIN_VFOV, MAX_VFOV)?;
+        let ways = [
+            c.look_at.is_some(),
+            c.direction.is_some(),
+            c.yaw.is_some() || c.pitch.is_some(),
+        ];
+        if ways.iter().filter(|&&w| w).count() > 1 {
+            return Err(self.error(
+                &at,
+                "give only one of `look_at`, `direction`, or `yaw`/`pitch`",
+            ));
+        }
+        let direction = if let Some(target) = c.look_at {
+            let target = self.point(&at, "look_at", target)?;
+            if target == eye {
+                return Err(self.error(&at, "`look_at` equals `eye`: the camera has no direction"));
+            }
+            target - eye
+        } else if let Some(d) = c.direction {
+            self.point(&at, "direction", d)?
+        } else {
+            let yaw = self.number(&at, "yaw", c.yaw.unwrap_or(0.0))?;
+            let pitch = self.in_range(&at, "pitch", c.pitch.unwrap_or(0.0), -89.0, 89.0)?;
+            return Ok(Camera {
+                eye,
+                yaw,
+                pitch,
+                vfov,
+            });
+        };
+        Camera::looking_along(eye, direction, vfov).ok_or_else(|| {
+            self.error(
+                &at,
+                format!("the view direction {direction} has zero length"),
+            )
+        })
+    }
+
+    fn render(
+        &self,
+        r: Option<&Spanned<RenderDef>>,
+    ) -> Result<(RenderDefaults, Vec3, Vec3), SceneError> {
+        let defaults = RenderDefaults::default();
+        let Some(r) = r else {
+            return Ok((defaults, Vec3::ZERO, Vec3::splat(0.2)));
+        };
+        let at = Item {
+            span: r.span(),
+            name: "render",
+        };
+        let r = r.get_ref();
+        let opt = |v: Option<i64>, d: u32| v.unwrap_or(d as i64);
+        let render = RenderDefaults {
+            width: self.count(
+                &at,
+                "width",
+                opt(r.width, defaults.width),
+                1,
+                MAX_IMAGE_SIDE,
+            )?,
+            height: self.count(
+                &at,
+                "height",
+                opt(r.height, defaults.height),
+                1,
+                MAX_IMAGE_SIDE,
+            )?,
+            aa: self.count(&at, "aa", opt(r.aa, defaults.aa), 1, 8)?,
+            max_depth: self.count(
+                &at,
+                "max_depth",
+                opt(r.max_depth, defaults.max_depth),
+                0,
+                64,
+            )?,
+        };
+        let background = self.color(&at, "background", r.background.unwrap_or([0.0; 3]))?;
+        let ambient = self.color(&at, "ambient", r.ambient.unwrap_or([0.2; 3]))?;
+        Ok((render, background, ambient))
+    }
+
+    fn texture(
+        &self,
+        name: &str,
+        t: &Spanned<TextureDef>,
+        images: &mut HashMap<PathBuf, Arc<ImageTexture>>,
+    ) -> Result<Texture, SceneError> {
+        let label = format!("textures.{name}");
+        let at = Item {
+            span: t.span(),
+            name: &label,
+        };
+        let t = t.get_ref();
+        let colors = |default: [V3; 2]| -> Result<[Vec3; 2], SceneError> {
+            let [a, b] = t.colors.unwrap_or(default);
+            Ok([self.color(&at, "colors", a)?, self.color(&at, "colors", b)?])
+        };
+        let require = |field: &str, v: Option<f32>| {
+            v.ok_or_else(|| self.error(&at, format!("a {} texture needs `{field}`", t.kind)))
+        };
+        match t.kind.as_str() {
+            "image" => {
+                let Some(rel) = &t.path else {
+                    return Err(self.error(&at, "an image texture needs `path`"));
+                };
+                let full = self.base_dir.join(rel);
+                if let Some(img) = images.get(&full) {
+                    return Ok(Texture::Image(img.clone()));
+                }
+                let img = ImageTexture::load(&full).map_err(|e| {
+                    self.error(
+                        &at,
+                        format!("cannot load image \"{}\": {e}", full.display()),
+                    )
+                })?;
+                let img = Arc::new(img);
+                images.insert(full, img.clone());
+                Ok(Texture::Image(img))
+            }
+            "checker" => {
+                let size = self.positive(&at, "size", require("size", t.size)?)?;
+                let axes_text = t.axes.as_deref().unwrap_or("xyz");
+                let mut axes = Vec3::ZERO;
+                for ch in axes_text.chars() {
+                    match ch {
+                        'x' => axes.x = 1.0,
+                        'y' => axes.y = 1.0,
+                        'z' => axes.z = 1.0,
+                        _ => {
+                            return Err(self.error(
+                                &at,
+                                format!("`axes` takes letters from \"xyz\", got \"{axes_text}\""),
+                            ));
+                        }
+                    }
+                }
+                if axes == Vec3::ZERO {
+                    return Err(self.error(&at, "`axes` names no axis"));
+                }
+                Ok(Texture::Checker {
+                    colors: colors([[1.0; 3], [0.0; 3]])?,
+                    size,
+                    axes,
+                })
+            }
+            "stripes" => {
+                let width = self.positive(&at, "width", require("width", t.width)?)?;
+                let d = self.point(&at, "direction", t.direction.unwrap_or([1.0, 0.0, 0.0]))?;
+                let direction = crate::numerics::try_normalize(d)
+                    .ok_or_else(|| self.error(&at, "`direction` has zero length"))?;
+                Ok(Texture::Stripes {
+                    colors: colors([[1.0; 3], [0.0; 3]])?,
+                    width,
+                    direction,
+                })
+            }
+            other => Err(self.error(
+                &at,
+                format!("unknown texture type \"{other}\" (expected image, checker or stripes)"),
+            )),
+        }
+    }
+
+    fn material(
+        &self,
+        name: &str,
+        m: &Spanned<MaterialDef>,
+        textures: &HashMap<String, Texture>,
+    ) -> Result<Material, SceneError> {
+        let label = format!("materials.{name}");
+        let at = Item {
+            span: m.span(),
+            name: &label,
+        };
+        let m = m.get_ref();
+        let d = Material::default();
+        let texture = match (&m.texture, m.color) {
+            (Some(_), Some(_)) => {
+                return Err(self.error(&at, "give either `color` or `texture`, not both"));
+            }
+            (Some(t), None) => textures
+                .get(t)
+                .cloned()
+                .ok_or_else(|| self.error(&at, format!("no texture named \"{t}\"")))?,
+            (None, Some(c)) => Texture::Solid(self.color(&at, "color", c)?),
+            (None, None) => d.texture.clone(),
+        };
+        let non_negative = |field: &str, v: Option<f32>, default: f32| {
+            self.in_range(&at, field, v.unwrap_or(default), 0.0, f32::MAX)
+        };
+        let eta = match m.eta {
+            None => None,
+            Some(e) if e.is_finite() && e > 0.0 => Some(e),
+            Some(e) => {
+                return Err(self.error(
+                    &at,
+                    format!("`eta` must be a finite number greater than zero, got {e}"),
+                ));
+            }
+        };
+        Ok(Material {
+            texture,
+            ambient: non_negative("ambient", m.ambient, d.ambient)?,
+            diffuse: non_negative("diffuse", m.diffuse, d.diffuse)?,
+            specular: non_negative("specular", m.specular, d.specular)?,
+            shininess: non_negative("shininess", m.shininess, d.shininess)?,
+            reflectivity: self.in_range(
+                &at,
+                "reflectivity",
+                m.reflectivity.unwrap_or(0.0),
+                0.0,
+                1.0,
+            )?,
+            transparency: self.in_range(
+                &at,
+                "transparency",
+                m.transparency.unwrap_or(0.0),
+                0.0,
+                1.0,
+            )?,
+            eta,
+        })
+    }
+}
+
+/// The largest image side the renderer accepts.
+pub const MAX_IMAGE_SIDE: i64 = 16384;
+
+struct Aabb3;
+impl Aabb3 {
+    /// The largest extent of a point set along any axis.
+    fn of(v: &[Vec3]) -> f32 {
+        let b = crate::geometry::Aabb::from_points(v);
+        (b.max - b.min).max_element()
+    }
+}
+
+/// Why these corners do not make a planar convex polygon, if they do not.
+pub fn check_polygon(v: &[Vec3]) -> Result<(), String> {
+    if v.len() < 3 {
+        return Err(format!(
+            "a polygon needs at least 3 vertices, got {}",
+            v.len()
+        ));
+    }
+    let extent = Aabb3::of(v);
+    let n = v.len();
+    for i in 0..n {
+        let j = (i + 1) % n;
+        if (v[j] - v[i]).length() <= 1e-6 * extent {
+            return Err(format!("vertices {i} and {j} coincide"));
+        }
+    }
+    // Newell's normal: robust for any planar polygon, and its length is twice the area.
+    let mut normal = Vec3::ZERO;
+    for i in 0..n {
+        let (a, b) = (v[i], v[(i + 1) % n]);
+        normal += Vec3::new(
+            (a.y - b.y) * (a.z + b.z),
+            (a.z - b.z) * (a.x + b.x),
+            (a.x - b.x) * (a.y + b.y),
+        );
+    }
+    let area2 = normal.length();
+    if area2.is_nan() || area2 <= 1e-6 * extent * extent {
+        return Err("the vertices are collinear (the polygon has no area)".into());
+    }
+    let normal = normal.normalize();
+    for (i, p) in v.iter().enumerate() {
+        if (*p - v[0]).dot(normal).abs() > 1e-4 * extent {
+            return Err(format!("vertex {i} is not in the plane of the others"));
+        }
+    }
+    for i in 0..n {
+        let (a, b, c) = (v[i], v[(i + 1) % n], v[(i + 2) % n]);
+        let turn = (b - a).cross(c - b);
+        if turn.length() <= 1e-6 * extent * extent {
+            return Err(format!(
+                "vertices {i}, {}, {} are collinear",
+                (i + 1) % n,
+                (i + 2) % n
+            ));
+        }
+        if turn.dot(normal) < 0.0 {
+            return Err(format!(
+                "the polygon is not convex at vertex {}",
+                (i + 1) % n
+            ));
+        }
+    }
+    Ok(())
+}

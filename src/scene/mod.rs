@@ -1,0 +1,15 @@
+//! Scenes: the description a file yields, and the prepared form the tracer runs on.
+//!
+//! ```text
+//! scene file (TOML) ──parse──▶ SceneFile ──validate──▶ Scene ──prepare──▶ PreparedScene
+//! ```
+
+pub mod description;
+pub mod error;
+pub mod file;
+pub mod prepared;
+
+pub use description::{RenderDefaults, Scene, SceneObject, ShapeDesc};
+pub use error::SceneError;
+pub use file::{load_scene, parse_scene};
+pub use prepared::{ObjectData, PreparedScene, Primitive};

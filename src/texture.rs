@@ -1,0 +1,202 @@
+//! Surface colour as a function of position: solid colours, the seed's procedural patterns,
+//! and bilinearly filtered images.
+
+use glam::Vec3;
+use std::path::Path;
+use std::sync::Arc;
+
+/// An RGB image held as 8-bit texels, looked up with bilinear filtering.
+#[derive(Debug, PartialEq)]
+pub struct ImageTexture {
+    pub width: u32,
+    pub height: u32,
+    texels: Vec<[u8; 3]>,
+}
+
+impl ImageTexture {
+    pub fn load(path: &Path) -> Result<Self, image::ImageError> {
+        let img = image::ImageReader::open(path)?
+            .with_guessed_format()?
+            .decode()?
+            .into_rgb8();
+        Ok(Self::from_rgb8(img.width(), img.height(), img.into_raw()))
+    }
+
+    pub fn from_rgb8(width: u32, height: u32, raw: Vec<u8>) -> Self {
+        assert_eq!(raw.len(), (width * height * 3) as usize, "texel count");
+        let texels = raw.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+        Self {
+            width,
+            height,
+            texels,
+        }
+    }
+
+    #[inline]
+    fn texel(&self, x: u32, y: u32) -> Vec3 {
+        let [r, g, b] = self.texels[(y * self.width + x) as usize];
+        Vec3::new(r as f32, g as f32, b as f32) * (1.0 / 255.0)
+    }
+
+    /// Bilinear lookup at (u, v), u wrapping around (longitude), v clamped (latitude);
+    /// texel (i, j) has its centre at ((i + ½) / width, (j + ½) / height).
+    pub fn sample(&self, u: f32, v: f32) -> Vec3 {
+        let x = u.rem_euclid(1.0) * self.width as f32 - 0.5;
+        let y = v.clamp(0.0, 1.0) * self.height as f32 - 0.5;
+        let (x0f, y0f) = (x.floor(), y.floor());
+        let (fx, fy) = (x - x0f, y - y0f);
+        let w = self.width as i64;
+        let h = self.height as i64;
+        let x0 = (x0f as i64).rem_euclid(w) as u32;
+        let x1 = ((x0f as i64) + 1).rem_euclid(w) as u32;
+        let y0 = (y0f as i64).clamp(0, h - 1) as u32;
+        let y1 = ((y0f as i64) + 1).clamp(0, h - 1) as u32;
+        let top = self.texel(x0, y0).lerp(self.texel(x1, y0), fx);
+        let bottom = self.texel(x0, y1).lerp(self.texel(x1, y1), fx);
+        top.lerp(bottom, fy)
+    }
+
+    /// The average colour of the image (used to tint light passing through it).
+    pub fn mean(&self) -> Vec3 {
+        let sum = self.texels.iter().fold(Vec3::ZERO, |acc, &[r, g, b]| {
+            acc + Vec3::new(r as f32, g as f32, b as f32)
+        });
+        sum / (255.0 * self.texels.len().max(1) as f32)
+    }
+}
+
+/// What colours a surface. Procedural patterns are evaluated on the point relative to the
+/// object's own origin (so they move with the object and keep their precision far from the
+/// world origin); images on the shape's (u, v).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Texture {
+    Solid(Vec3),
+    /// Cells of edge `size` alternating between two colours; only the axes whose mask
+    /// component is 1 take part (a floor uses x and z, so rounding in y cannot flip a cell).
+    Checker {
+        colors: [Vec3; 2],
+        size: f32,
+        axes: Vec3,
+    },
+    /// Bands of width `width` across the unit `direction`.
+    Stripes {
+        colors: [Vec3; 2],
+        width: f32,
+        direction: Vec3,
+    },
+    Image(Arc<ImageTexture>),
+}
+
+impl Texture {
+    #[inline]
+    pub fn eval(&self, uv: (f32, f32), local: Vec3) -> Vec3 {
+        match self {
+            Texture::Solid(c) => *c,
+            Texture::Checker { colors, size, axes } => {
+                let cell = (local * *axes / *size).floor();
+                let parity = (cell.x + cell.y + cell.z).rem_euclid(2.0);
+                colors[(parity >= 1.0) as usize]
+            }
+            Texture::Stripes {
+                colors,
+                width,
+                direction,
+            } => {
+                let band = (local.dot(*direction) / *width).floor();
+                colors[(band.rem_euclid(2.0) >= 1.0) as usize]
+            }
+            Texture::Image(img) => img.sample(uv.0, uv.1),
+        }
+    }
+
+    /// A representative colour (the mean over the pattern).
+    pub fn mean(&self) -> Vec3 {
+        match self {
+            Texture::Solid(c) => *c,
+            Texture::Checker { colors, .. } | Texture::Stripes { colors, .. } => {
+                (colors[0] + colors[1]) * 0.5
+            }
+            Texture::Image(img) => img.mean(),
+        }
+    }
+
+    /// Scales the pattern's lengths with the scene (for scale-invariance tests).
+    pub fn scaled(&self, factor: f32) -> Texture {
+        match self {
+            Texture::Checker { colors, size, axes } => Texture::Checker {
+                colors: *colors,
+                size: size * factor,
+                axes: *axes,
+            },
+            Texture::Stripes {
+                colors,
+                width,
+                direction,
+            } => Texture::Stripes {
+                colors: *colors,
+                width: width * factor,
+                direction: *direction,
+            },
+            other => other.clone(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn four_texels() -> ImageTexture {
+        // 2×2: red, green / blue, white.
+        ImageTexture::from_rgb8(2, 2, vec![255, 0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 255])
+    }
+
+    #[test]
+    fn texel_centres_return_their_colour() {
+        let t = four_texels();
+        assert_eq!(t.sample(0.25, 0.25), Vec3::X);
+        assert_eq!(t.sample(0.75, 0.25), Vec3::Y);
+        assert_eq!(t.sample(0.25, 0.75), Vec3::Z);
+        assert_eq!(t.sample(0.75, 0.75), Vec3::ONE);
+    }
+
+    #[test]
+    fn bilinear_blends_and_wraps_in_u() {
+        let t = four_texels();
+        let mid = t.sample(0.5, 0.25);
+        assert!((mid - Vec3::new(0.5, 0.5, 0.0)).length() < 1e-6);
+        // u = 0 lies halfway between the last column and the first.
+        let seam = t.sample(0.0, 0.25);
+        assert!((seam - Vec3::new(0.5, 0.5, 0.0)).length() < 1e-6);
+        // v is clamped at the poles.
+        assert_eq!(t.sample(0.25, 0.0), Vec3::X);
+        assert_eq!(t.sample(0.25, 1.0), Vec3::Z);
+    }
+
+    #[test]
+    fn checker_alternates_on_masked_axes_only() {
+        let c = Texture::Checker {
+            colors: [Vec3::ZERO, Vec3::ONE],
+            size: 5.0,
+            axes: Vec3::new(1.0, 0.0, 1.0),
+        };
+        assert_eq!(c.eval((0.0, 0.0), Vec3::new(1.0, 0.0, 1.0)), Vec3::ZERO);
+        assert_eq!(c.eval((0.0, 0.0), Vec3::new(6.0, 0.0, 1.0)), Vec3::ONE);
+        assert_eq!(c.eval((0.0, 0.0), Vec3::new(6.0, 0.0, 6.0)), Vec3::ZERO);
+        assert_eq!(c.eval((0.0, 0.0), Vec3::new(-1.0, 0.0, 1.0)), Vec3::ONE);
+        // y does not take part: a point just below the floor keeps its cell.
+        assert_eq!(c.eval((0.0, 0.0), Vec3::new(1.0, -1e-7, 1.0)), Vec3::ZERO);
+    }
+
+    #[test]
+    fn stripes_follow_their_direction() {
+        let s = Texture::Stripes {
+            colors: [Vec3::X, Vec3::Y],
+            width: 2.0,
+            direction: Vec3::X,
+        };
+        assert_eq!(s.eval((0.0, 0.0), Vec3::new(1.0, 50.0, -3.0)), Vec3::X);
+        assert_eq!(s.eval((0.0, 0.0), Vec3::new(3.0, -7.0, 9.0)), Vec3::Y);
+        assert_eq!(s.eval((0.0, 0.0), Vec3::new(-1.0, 0.0, 0.0)), Vec3::Y);
+    }
+}
