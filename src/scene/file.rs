@@ -181,6 +181,36 @@ struct Item<'s> {
 }
 
 impl Validator<'_> {
+    /// An error in table `at`, pointing at the line of `field` when the table names it.
+    fn field_error(&self, at: &Item, field: &str, message: impl Into<String>) -> SceneError {
+        let key = field.split(['[', '.']).next().unwrap_or(field);
+        // The span may cover only a table's header: search on to the next header.
+        let rest = &self.source[at.span.start..];
+        let end = rest
+            .match_indices('\n')
+            .map(|(i, _)| i + 1)
+            .find(|&i| rest[i..].trim_start().starts_with('['))
+            .unwrap_or(rest.len())
+            .max(at.span.len().min(rest.len()));
+        let table = &rest[..end];
+        let mut offset = 0;
+        for line in table.split_inclusive('\n') {
+            let trimmed = line.trim_start();
+            if let Some(rest) = trimmed.strip_prefix(key)
+                && rest.trim_start().starts_with('=')
+            {
+                let start = at.span.start + offset + (line.len() - trimmed.len());
+                let at = Item {
+                    span: start..start,
+                    name: at.name,
+                };
+                return self.error(&at, message);
+            }
+            offset += line.len();
+        }
+        self.error(at, message)
+    }
+
     fn error(&self, at: &Item, message: impl Into<String>) -> SceneError {
         let (line, _) = line_column(self.source, at.span.start);
         SceneError::Invalid {
@@ -195,7 +225,11 @@ impl Validator<'_> {
         if v.is_finite() {
             Ok(v)
         } else {
-            Err(self.error(at, format!("`{field}` must be a finite number, got {v}")))
+            Err(self.field_error(
+                at,
+                field,
+                format!("`{field}` must be a finite number, got {v}"),
+            ))
         }
     }
 
@@ -204,7 +238,11 @@ impl Validator<'_> {
         if v > 0.0 {
             Ok(v)
         } else {
-            Err(self.error(at, format!("`{field}` must be greater than zero, got {v}")))
+            Err(self.field_error(
+                at,
+                field,
+                format!("`{field}` must be greater than zero, got {v}"),
+            ))
         }
     }
 
@@ -220,7 +258,11 @@ impl Validator<'_> {
         if (lo..=hi).contains(&v) {
             Ok(v)
         } else {
-            Err(self.error(at, format!("`{field}` must lie in [{lo}, {hi}], got {v}")))
+            Err(self.field_error(
+                at,
+                field,
+                format!("`{field}` must lie in [{lo}, {hi}], got {v}"),
+            ))
         }
     }
 
@@ -228,7 +270,11 @@ impl Validator<'_> {
         if v.iter().all(|c| c.is_finite()) {
             Ok(Vec3::from(v))
         } else {
-            Err(self.error(at, format!("`{field}` must hold finite numbers, got {v:?}")))
+            Err(self.field_error(
+                at,
+                field,
+                format!("`{field}` must hold finite numbers, got {v:?}"),
+            ))
         }
     }
 
@@ -237,7 +283,11 @@ impl Validator<'_> {
         if c.min_element() >= 0.0 {
             Ok(c)
         } else {
-            Err(self.error(at, format!("`{field}` must not be negative, got {v:?}")))
+            Err(self.field_error(
+                at,
+                field,
+                format!("`{field}` must not be negative, got {v:?}"),
+            ))
         }
     }
 
@@ -245,7 +295,11 @@ impl Validator<'_> {
         if (lo..=hi).contains(&v) {
             Ok(v as u32)
         } else {
-            Err(self.error(at, format!("`{field}` must lie in {lo}..={hi}, got {v}")))
+            Err(self.field_error(
+                at,
+                field,
+                format!("`{field}` must lie in {lo}..={hi}, got {v}"),
+            ))
         }
     }
 
@@ -330,7 +384,7 @@ impl Validator<'_> {
             let d = p.get_ref();
             add("polygons", i, p.span(), &d.name, &d.material, &|at| {
                 let vertices = self.vertices(at, &d.vertices)?;
-                check_polygon(&vertices).map_err(|m| self.error(at, m))?;
+                check_polygon(&vertices).map_err(|m| self.field_error(at, "vertices", m))?;
                 Ok(ShapeDesc::Polygon { vertices })
             })?;
         }
@@ -338,7 +392,7 @@ impl Validator<'_> {
             let d = t.get_ref();
             add("triangles", i, t.span(), &d.name, &d.material, &|at| {
                 let v = self.vertices(at, &d.vertices)?;
-                check_polygon(&v).map_err(|m| self.error(at, m))?;
+                check_polygon(&v).map_err(|m| self.field_error(at, "vertices", m))?;
                 Ok(ShapeDesc::Triangle {
                     vertices: [v[0], v[1], v[2]],
                 })
@@ -576,8 +630,9 @@ impl Validator<'_> {
             None => None,
             Some(e) if e.is_finite() && e > 0.0 => Some(e),
             Some(e) => {
-                return Err(self.error(
+                return Err(self.field_error(
                     &at,
+                    "eta",
                     format!("`eta` must be a finite number greater than zero, got {e}"),
                 ));
             }

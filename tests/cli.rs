@@ -1,0 +1,290 @@
+//! The `prism render` command end to end: a real render, and every kind of bad input
+//! answered with a located message and exit code 2, never a panic or a partial file.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn prism(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_prism"))
+        .args(args)
+        .output()
+        .expect("prism runs")
+}
+
+/// A valid minimal scene; tests break it one field at a time.
+const GOOD: &str = r#"
+[camera]
+eye = [0, 0, 0]
+direction = [0, 0, -1]
+fov = 40
+
+[[lights]]
+position = [0, 10, 0]
+
+[materials.red]
+color = [1, 0, 0]
+transparency = 0.5
+reflectivity = 0.2
+eta = 1.5
+
+[[spheres]]
+name = "ball"
+center = [0, 0, -5]
+radius = 1
+material = "red"
+
+[[polygons]]
+name = "ground"
+vertices = [[-5, -1, 0], [5, -1, 0], [5, -1, -10], [-5, -1, -10]]
+"#;
+
+struct Case {
+    dir: tempfile::TempDir,
+}
+
+impl Case {
+    fn new() -> Self {
+        Self {
+            dir: tempfile::tempdir().unwrap(),
+        }
+    }
+
+    fn scene(&self, text: &str) -> PathBuf {
+        let p = self.dir.path().join("scene.toml");
+        std::fs::write(&p, text).unwrap();
+        p
+    }
+
+    fn out(&self) -> PathBuf {
+        self.dir.path().join("out.png")
+    }
+
+    fn render(&self, scene: &Path, extra: &[&str]) -> Output {
+        let out = self.out();
+        let mut args = vec![
+            "render",
+            scene.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        args.push("--quiet");
+        for (flag, value) in [("--width", "40"), ("--height", "30")] {
+            if !extra.contains(&flag) {
+                args.extend_from_slice(&[flag, value]);
+            }
+        }
+        args.extend_from_slice(extra);
+        prism(&args)
+    }
+
+    /// Asserts the render failed with exit code 2, left no file, and said all of `needles`.
+    fn fails_with(&self, text: &str, extra: &[&str], needles: &[&str]) {
+        let scene = self.scene(text);
+        let out = self.render(&scene, extra);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "stderr: {stderr}");
+        assert!(!stderr.contains("panicked"), "{stderr}");
+        for n in needles {
+            assert!(stderr.contains(n), "expected {n:?} in: {stderr}");
+        }
+        let leftovers: Vec<_> = std::fs::read_dir(self.dir.path())
+            .unwrap()
+            .map(|e| e.unwrap().file_name().into_string().unwrap())
+            .filter(|n| n != "scene.toml")
+            .collect();
+        assert!(leftovers.is_empty(), "left behind: {leftovers:?}");
+    }
+}
+
+fn replace(from: &str, to: &str) -> String {
+    assert!(GOOD.contains(from), "{from}");
+    GOOD.replacen(from, to, 1)
+}
+
+#[test]
+fn renders_a_png_and_reports_speed() {
+    let case = Case::new();
+    let scene = case.scene(GOOD);
+    let out = case.render(&scene, &["--aa", "2", "--threads", "2"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(stderr.contains("4.00 samples per pixel"), "{stderr}");
+    assert!(stderr.contains("M rays/s"), "{stderr}");
+    let img = image::open(case.out()).unwrap().into_rgb8();
+    assert_eq!(img.dimensions(), (40, 30));
+    // The ball is red in the middle of the image.
+    let c = img.get_pixel(20, 15);
+    assert!(c[0] > c[1] && c[0] > c[2], "{c:?}");
+}
+
+#[test]
+fn seed_scene_is_the_default() {
+    let case = Case::new();
+    let out_path = case.out();
+    let out = prism(&[
+        "render",
+        "--width",
+        "32",
+        "--height",
+        "24",
+        "--aa",
+        "1",
+        "--quiet",
+        "--out",
+        out_path.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(out_path.exists());
+}
+
+#[test]
+fn toml_syntax_error_names_line_and_column() {
+    Case::new().fails_with(&replace("fov = 40", "fov = = 40"), &[], &["scene.toml:5:"]);
+}
+
+#[test]
+fn unknown_field_is_named() {
+    Case::new().fails_with(
+        &replace("radius = 1", "radius = 1\nradiuss = 2"),
+        &[],
+        &["scene.toml:", "radiuss"],
+    );
+}
+
+#[test]
+fn missing_field_is_named() {
+    Case::new().fails_with(&replace("radius = 1\n", ""), &[], &["radius"]);
+}
+
+#[test]
+fn missing_texture_image_is_named() {
+    let text = format!("{GOOD}\n[textures.pic]\ntype = \"image\"\npath = \"nope.jpg\"\n");
+    Case::new().fails_with(&text, &[], &["textures.pic", "nope.jpg"]);
+}
+
+#[test]
+fn unreadable_texture_image_is_named() {
+    let case = Case::new();
+    std::fs::write(case.dir.path().join("bad.jpg"), b"not a jpeg").unwrap();
+    let text = format!("{GOOD}\n[textures.pic]\ntype = \"image\"\npath = \"bad.jpg\"\n");
+    let scene = case.scene(&text);
+    let out = case.render(&scene, &[]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("bad.jpg"), "{stderr}");
+}
+
+#[test]
+fn non_positive_radius_is_rejected_with_its_line() {
+    let case = Case::new();
+    case.fails_with(
+        &replace("radius = 1", "radius = -1"),
+        &[],
+        &["scene.toml:19:", "spheres[0] \"ball\"", "radius", "-1"],
+    );
+    case.fails_with(&replace("radius = 1", "radius = 0"), &[], &["radius"]);
+}
+
+#[test]
+fn bad_eta_is_rejected() {
+    let case = Case::new();
+    case.fails_with(
+        &replace("eta = 1.5", "eta = 0"),
+        &[],
+        &["materials.red", "eta"],
+    );
+    case.fails_with(&replace("eta = 1.5", "eta = -2"), &[], &["eta"]);
+    case.fails_with(&replace("eta = 1.5", "eta = nan"), &[], &["eta"]);
+    case.fails_with(&replace("eta = 1.5", "eta = inf"), &[], &["eta"]);
+}
+
+#[test]
+fn fractions_outside_zero_one_are_rejected() {
+    let case = Case::new();
+    case.fails_with(
+        &replace("transparency = 0.5", "transparency = 1.5"),
+        &[],
+        &["materials.red", "transparency", "[0, 1]"],
+    );
+    case.fails_with(
+        &replace("reflectivity = 0.2", "reflectivity = -0.1"),
+        &[],
+        &["reflectivity"],
+    );
+}
+
+#[test]
+fn degenerate_polygons_are_rejected() {
+    let case = Case::new();
+    case.fails_with(
+        &replace(
+            "[[-5, -1, 0], [5, -1, 0], [5, -1, -10], [-5, -1, -10]]",
+            "[[0, 0, 0], [1, 1, 1], [2, 2, 2]]",
+        ),
+        &[],
+        &["polygons[0] \"ground\"", "collinear"],
+    );
+    case.fails_with(
+        &replace(
+            "[[-5, -1, 0], [5, -1, 0], [5, -1, -10], [-5, -1, -10]]",
+            "[[-5, -1, 0], [5, -1, 0], [5, -1, 0], [-5, -1, -10]]",
+        ),
+        &[],
+        &["coincide"],
+    );
+}
+
+#[test]
+fn zero_length_camera_direction_is_rejected() {
+    let case = Case::new();
+    case.fails_with(
+        &replace("direction = [0, 0, -1]", "direction = [0, 0, 0]"),
+        &[],
+        &["camera", "zero length"],
+    );
+    case.fails_with(
+        &replace("direction = [0, 0, -1]", "look_at = [0, 0, 0]"),
+        &[],
+        &["look_at"],
+    );
+}
+
+#[test]
+fn bad_image_settings_are_rejected() {
+    let case = Case::new();
+    case.fails_with(GOOD, &["--width", "0"], &["width and height"]);
+    case.fails_with(GOOD, &["--aa", "9"], &["anti-aliasing level 9"]);
+    case.fails_with(GOOD, &["--aa", "0"], &["anti-aliasing level 0"]);
+}
+
+#[test]
+fn unwritable_output_fails_before_rendering() {
+    let case = Case::new();
+    let scene = case.scene(GOOD);
+    let bad = case.dir.path().join("missing-dir/out.png");
+    let out = prism(&[
+        "render",
+        scene.to_str().unwrap(),
+        "--out",
+        bad.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("missing-dir/out.png"), "{stderr}");
+    assert!(
+        !stderr.contains("rendered"),
+        "it should not have rendered: {stderr}"
+    );
+}
+
+#[test]
+fn missing_scene_file_is_named() {
+    let out = prism(&["render", "/no/such/scene.toml", "--quiet"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(stderr.contains("/no/such/scene.toml"), "{stderr}");
+}
