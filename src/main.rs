@@ -2,6 +2,8 @@
 //! a PNG headless, `bench` measures run time against image error.
 
 mod cli;
+#[cfg(feature = "viewer")]
+mod viewer;
 
 use clap::Parser;
 use std::process::ExitCode;

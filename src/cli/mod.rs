@@ -49,8 +49,14 @@ pub fn run(args: Args) -> Result<()> {
     }
 }
 
+#[cfg(feature = "viewer")]
+fn view(args: ViewArgs) -> Result<()> {
+    crate::viewer::run(args)
+}
+
+#[cfg(not(feature = "viewer"))]
 fn view(_: ViewArgs) -> Result<()> {
-    anyhow::bail!("the viewer is not part of this build yet; use `prism render`")
+    anyhow::bail!("this prism was built without the viewer feature; use `prism render`")
 }
 
 /// The scene file to load: the one given, or the seed scene.

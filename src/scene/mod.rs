@@ -5,6 +5,7 @@
 //! ```
 
 pub mod description;
+pub mod edit;
 pub mod error;
 pub mod file;
 pub mod prepared;

@@ -1,0 +1,274 @@
+//! The render thread: owns the progressive render, takes requests by message, and publishes
+//! each finished pass for the UI thread to show. A generation counter, bumped with every
+//! request, cancels the pass in flight at the next band of rows.
+
+use prism::camera::Camera;
+use prism::render::{PassOutcome, ProgressiveRender, RenderSettings};
+use prism::scene::PreparedScene;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::mpsc::{Receiver, Sender, TryRecvError, channel};
+use std::sync::{Arc, Mutex, MutexGuard};
+use std::thread::JoinHandle;
+use std::time::Instant;
+
+/// While the camera moves, one ray per block of this many pixels on a side.
+pub const PREVIEW_BLOCK: u32 = 4;
+
+pub enum Request {
+    Scene(Arc<PreparedScene>),
+    /// `moving`: the camera is still being dragged or flown, so show a fast coarse preview
+    /// and wait for the next position instead of refining.
+    Camera {
+        camera: Camera,
+        moving: bool,
+    },
+    Settings(RenderSettings),
+}
+
+/// What the render thread reports alongside each image.
+#[derive(Clone, Debug, Default)]
+pub struct Status {
+    pub passes_done: u32,
+    pub total_passes: u32,
+    pub samples_per_pixel: f64,
+    pub ms_per_pass: f64,
+    pub rays_per_second: f64,
+    /// Wall-clock seconds since the last restart; frozen once converged.
+    pub seconds: f64,
+    pub converged: bool,
+    pub active_pixels: usize,
+    pub total_pixels: usize,
+    pub preview: bool,
+}
+
+/// The latest published image, as RGBA8 rows.
+#[derive(Default)]
+pub struct Published {
+    pub rgba: Vec<u8>,
+    pub width: u32,
+    pub height: u32,
+    /// Bumped with every publication, so the UI copies only what is new.
+    pub serial: u64,
+    pub status: Status,
+}
+
+pub struct RenderThread {
+    requests: Option<Sender<Request>>,
+    generation: Arc<AtomicU64>,
+    published: Arc<Mutex<Published>>,
+    handle: Option<JoinHandle<()>>,
+}
+
+impl RenderThread {
+    /// Starts rendering at once; `wake` is called after each publication (to redraw).
+    pub fn spawn(
+        scene: Arc<PreparedScene>,
+        camera: Camera,
+        settings: RenderSettings,
+        wake: impl Fn() + Send + 'static,
+    ) -> Self {
+        let (tx, rx) = channel();
+        let generation = Arc::new(AtomicU64::new(0));
+        let published = Arc::new(Mutex::new(Published::default()));
+        let worker = Worker {
+            job: ProgressiveRender::new(scene, camera, settings),
+            requests: rx,
+            generation: generation.clone(),
+            published: published.clone(),
+            wake: Box::new(wake),
+            moving: false,
+            restarted: Instant::now(),
+        };
+        let handle = std::thread::Builder::new()
+            .name("prism-render".into())
+            .spawn(move || worker.run())
+            .expect("the render thread starts");
+        Self {
+            requests: Some(tx),
+            generation,
+            published,
+            handle: Some(handle),
+        }
+    }
+
+    /// Sends a change; the pass in flight is abandoned.
+    pub fn send(&self, request: Request) {
+        self.generation.fetch_add(1, Ordering::SeqCst);
+        if let Some(tx) = &self.requests {
+            // The worker only stops when we drop the sender, so this cannot fail first.
+            let _ = tx.send(request);
+        }
+    }
+
+    pub fn published(&self) -> MutexGuard<'_, Published> {
+        self.published.lock().unwrap_or_else(|e| e.into_inner())
+    }
+}
+
+impl Drop for RenderThread {
+    /// Closing the channel ends the worker after at most one band of rows.
+    fn drop(&mut self) {
+        self.generation.fetch_add(1, Ordering::SeqCst);
+        self.requests.take();
+        if let Some(h) = self.handle.take() {
+            let _ = h.join();
+        }
+    }
+}
+
+struct Worker {
+    job: ProgressiveRender,
+    requests: Receiver<Request>,
+    generation: Arc<AtomicU64>,
+    published: Arc<Mutex<Published>>,
+    wake: Box<dyn Fn() + Send>,
+    moving: bool,
+    restarted: Instant,
+}
+
+impl Worker {
+    fn run(mut self) {
+        let mut waiting = false;
+        loop {
+            // Idle (converged, or a preview shown): sleep until a request comes.
+            let first = if waiting {
+                match self.requests.recv() {
+                    Ok(r) => Some(r),
+                    Err(_) => return,
+                }
+            } else {
+                None
+            };
+            if let Some(r) = first {
+                self.apply(r);
+            }
+            loop {
+                match self.requests.try_recv() {
+                    Ok(r) => self.apply(r),
+                    Err(TryRecvError::Empty) => break,
+                    Err(TryRecvError::Disconnected) => return,
+                }
+            }
+            let generation = self.generation.load(Ordering::SeqCst);
+            let counter = self.generation.clone();
+            let cancelled = move || counter.load(Ordering::SeqCst) != generation;
+            if self.moving {
+                self.preview(&cancelled);
+                waiting = true;
+                continue;
+            }
+            match self.job.step(&cancelled) {
+                PassOutcome::Finished(stats) => {
+                    self.publish(stats.seconds, false);
+                    waiting = false;
+                }
+                PassOutcome::Cancelled => waiting = false,
+                PassOutcome::Converged => {
+                    self.publish(0.0, false);
+                    waiting = true;
+                }
+            }
+        }
+    }
+
+    fn apply(&mut self, request: Request) {
+        self.restarted = Instant::now();
+        match request {
+            Request::Scene(scene) => self.job.set_scene(scene),
+            Request::Camera { camera, moving } => {
+                self.moving = moving;
+                self.job.set_camera(camera);
+            }
+            Request::Settings(settings) => self.job.set_settings(settings),
+        }
+    }
+
+    /// One ray per PREVIEW_BLOCK² pixels, upscaled by repetition.
+    fn preview(&mut self, cancelled: &(dyn Fn() -> bool + Sync)) {
+        let full = *self.job.settings();
+        let mut settings = full;
+        settings.width = full.width.div_ceil(PREVIEW_BLOCK);
+        settings.height = full.height.div_ceil(PREVIEW_BLOCK);
+        settings.aa = 1;
+        settings.adaptive = None;
+        let mut coarse =
+            ProgressiveRender::new(self.job.scene().clone(), *self.job.camera(), settings);
+        let PassOutcome::Finished(stats) = coarse.step(cancelled) else {
+            return;
+        };
+        let mut small = vec![0u8; (settings.width * settings.height * 4) as usize];
+        coarse.accumulator().write_rgba8(&mut small);
+        let mut rgba = vec![0u8; (full.width * full.height * 4) as usize];
+        for y in 0..full.height {
+            let sy = y / PREVIEW_BLOCK;
+            for x in 0..full.width {
+                let s = ((sy * settings.width + x / PREVIEW_BLOCK) * 4) as usize;
+                let d = ((y * full.width + x) * 4) as usize;
+                rgba[d..d + 4].copy_from_slice(&small[s..s + 4]);
+            }
+        }
+        let status = Status {
+            passes_done: 0,
+            total_passes: full.total_passes(),
+            ms_per_pass: stats.seconds * 1e3,
+            rays_per_second: stats.rays.total() as f64 / stats.seconds.max(1e-9),
+            total_pixels: (full.width * full.height) as usize,
+            preview: true,
+            ..Status::default()
+        };
+        self.store(rgba, full.width, full.height, status);
+    }
+
+    fn publish(&mut self, pass_seconds: f64, preview: bool) {
+        let s = self.job.settings();
+        let (width, height) = (s.width, s.height);
+        let mut rgba = vec![0u8; (width * height * 4) as usize];
+        self.job.accumulator().write_rgba8(&mut rgba);
+        let rays = self.job.rays_traced();
+        let converged = self.job.is_converged();
+        let status = Status {
+            passes_done: self.job.passes_done(),
+            total_passes: self.job.total_passes(),
+            samples_per_pixel: self.job.samples_per_pixel(),
+            ms_per_pass: pass_seconds * 1e3,
+            rays_per_second: rays.total() as f64 / self.job.seconds().max(1e-9),
+            seconds: self.restarted.elapsed().as_secs_f64(),
+            converged,
+            active_pixels: if converged {
+                0
+            } else {
+                self.job.active_pixels()
+            },
+            total_pixels: (width * height) as usize,
+            preview,
+        };
+        self.store(rgba, width, height, status);
+    }
+
+    fn store(&self, rgba: Vec<u8>, width: u32, height: u32, status: Status) {
+        {
+            let mut p = self.published.lock().unwrap_or_else(|e| e.into_inner());
+            // A converged job publishes once more only to update the status; keep its
+            // ms-per-pass figure from the last real pass.
+            let status = if status.ms_per_pass == 0.0 && status.converged {
+                Status {
+                    ms_per_pass: p.status.ms_per_pass,
+                    seconds: if p.status.converged {
+                        p.status.seconds
+                    } else {
+                        status.seconds
+                    },
+                    ..status
+                }
+            } else {
+                status
+            };
+            p.rgba = rgba;
+            p.width = width;
+            p.height = height;
+            p.serial += 1;
+            p.status = status;
+        }
+        (self.wake)();
+    }
+}
