@@ -72,6 +72,7 @@ pub fn run(args: ViewArgs) -> Result<()> {
         last_frame: Instant::now(),
         shown_serial: 0,
         cursor: None,
+        modifiers: Default::default(),
         status: Status::default(),
     };
     event_loop
@@ -94,6 +95,7 @@ struct App {
     last_frame: Instant,
     shown_serial: u64,
     cursor: Option<PhysicalPosition<f64>>,
+    modifiers: winit::keyboard::ModifiersState,
     status: Status,
 }
 
@@ -221,10 +223,12 @@ impl App {
                 p.status.samples_per_pixel,
             )
         };
-        self.panel.message = Some(match result {
+        let message = match result {
             Ok(path) => (format!("saved {}", path.display()), false),
             Err(e) => (format!("screenshot failed: {e:#}"), true),
-        });
+        };
+        eprintln!("prism: {}", message.0);
+        self.panel.message = Some(message);
         if let Some(g) = &self.gfx {
             g.window.request_redraw();
         }
@@ -243,6 +247,13 @@ impl App {
         let panel_px = g.panel_px();
         {
             let p = g.render.published();
+            if p.status.converged && !self.status.converged {
+                // A line for whoever launched the viewer (and for the window test).
+                eprintln!(
+                    "prism: converged: {} passes, {:.2} samples per pixel, {:.2} s",
+                    p.status.passes_done, p.status.samples_per_pixel, p.status.seconds
+                );
+            }
             self.status = p.status.clone();
             if p.serial != self.shown_serial {
                 self.shown_serial = p.serial;
@@ -448,6 +459,11 @@ impl ApplicationHandler<Wake> for App {
                 if pressed && (egui_keys || response.consumed) {
                     return;
                 }
+                if pressed && code == KeyCode::KeyQ && self.modifiers.control_key() {
+                    self.gfx = None;
+                    event_loop.exit();
+                    return;
+                }
                 let was_flying = self.input.flying();
                 if self.input.key(code, pressed) {
                     if was_flying && !self.input.moving() {
@@ -461,6 +477,7 @@ impl ApplicationHandler<Wake> for App {
                     self.screenshot();
                 }
             }
+            WindowEvent::ModifiersChanged(m) => self.modifiers = m.state(),
             WindowEvent::CursorMoved { position, .. } => {
                 if self.input.dragging
                     && let Some(last) = self.cursor

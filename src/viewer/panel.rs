@@ -93,7 +93,7 @@ impl PanelState {
             ui.separator();
             status_lines(ui, status);
             ui.separator();
-            ui.small("Drag: look · WASD: move · Q/E: down/up · scroll: zoom");
+            ui.small("Drag: look · WASD: move · Q/E: down/up · scroll: zoom · Ctrl+Q: quit");
         });
         changes
     }

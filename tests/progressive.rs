@@ -1,0 +1,108 @@
+//! The progressive engine the viewer runs: one subsample per pixel per pass, cancellable at
+//! any moment, converging to exactly the one-shot render.
+
+use prism::render::{self, AdaptiveSettings, PassOutcome, ProgressiveRender, RenderSettings};
+use prism::scene::{PreparedScene, load_scene};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+fn seed() -> (Arc<PreparedScene>, prism::camera::Camera) {
+    let scene = load_scene(&prism::seed_scene_path()).unwrap();
+    (Arc::new(PreparedScene::new(&scene)), scene.camera)
+}
+
+const NEVER: fn() -> bool = || false;
+
+#[test]
+fn each_pass_adds_one_subsample_to_every_pixel() {
+    let (scene, camera) = seed();
+    let mut job = ProgressiveRender::new(scene, camera, RenderSettings::new(64, 48, 3));
+    for pass in 1..=9 {
+        assert!(matches!(job.step(&NEVER), PassOutcome::Finished(_)));
+        assert!(job.accumulator().pixels.iter().all(|p| p.count == pass));
+        assert_eq!(job.passes_done(), pass);
+    }
+    assert!(job.is_converged());
+}
+
+#[test]
+fn stops_when_converged() {
+    let (scene, camera) = seed();
+    let mut job = ProgressiveRender::new(scene, camera, RenderSettings::new(32, 24, 2));
+    for _ in 0..4 {
+        job.step(&NEVER);
+    }
+    let before = job.accumulator().clone();
+    for _ in 0..3 {
+        assert_eq!(job.step(&NEVER), PassOutcome::Converged);
+    }
+    assert_eq!(job.accumulator(), &before, "no work after convergence");
+}
+
+#[test]
+fn progressive_equals_one_shot() {
+    let (scene, camera) = seed();
+    let settings = RenderSettings::new(80, 60, 4);
+    let one_shot = render::render(scene.clone(), camera, settings, |_, _| {});
+    let mut job = ProgressiveRender::new(scene, camera, settings);
+    while let PassOutcome::Finished(_) = job.step(&NEVER) {}
+    assert!(job.accumulator() == one_shot.accumulator());
+    assert_eq!(job.accumulator().to_rgb8(), one_shot.accumulator().to_rgb8());
+}
+
+#[test]
+fn restart_in_the_middle_of_a_pass_gives_the_same_final_image() {
+    let (scene, camera) = seed();
+    let settings = RenderSettings::new(80, 60, 2);
+    let reference = render::render(scene.clone(), camera, settings, |_, _| {});
+
+    let mut job = ProgressiveRender::new(scene, camera, settings);
+    job.step(&NEVER);
+    // Cancel the second pass after a few bands of rows.
+    let bands = AtomicUsize::new(0);
+    let cancel_soon = || bands.fetch_add(1, Ordering::SeqCst) >= 3;
+    assert_eq!(job.step(&cancel_soon), PassOutcome::Cancelled);
+    let partial: u32 = job.accumulator().pixels.iter().map(|p| p.count).max().unwrap();
+    assert_eq!(partial, 2, "some rows had their second subsample when cancelled");
+    while let PassOutcome::Finished(_) = job.step(&NEVER) {}
+    assert!(job.accumulator() == reference.accumulator());
+}
+
+#[test]
+fn camera_change_restarts_accumulation() {
+    let (scene, mut camera) = seed();
+    let mut job = ProgressiveRender::new(scene, camera, RenderSettings::new(40, 30, 2));
+    job.step(&NEVER);
+    job.step(&NEVER);
+    camera.yaw += 5.0;
+    job.set_camera(camera);
+    assert_eq!(job.passes_done(), 0);
+    assert!(job.accumulator().pixels.iter().all(|p| p.count == 0));
+}
+
+#[test]
+fn adaptive_sampling_stops_flat_pixels_and_refines_edges() {
+    let (scene, camera) = seed();
+    let mut settings = RenderSettings::new(160, 120, 4);
+    let full = render::render(scene.clone(), camera, settings, |_, _| {});
+    settings.adaptive = Some(AdaptiveSettings::default());
+    let adaptive = render::render(scene, camera, settings, |_, _| {});
+    let counts: Vec<u32> = adaptive.accumulator().pixels.iter().map(|p| p.count).collect();
+    let min = *counts.iter().min().unwrap();
+    let max = *counts.iter().max().unwrap();
+    assert!(min >= AdaptiveSettings::default().min_samples, "min {min}");
+    assert_eq!(max, 16, "edges keep refining to the full grid");
+    let stopped = counts.iter().filter(|&&c| c < 16).count();
+    assert!(stopped * 2 > counts.len(), "only {stopped} of {} pixels stopped early", counts.len());
+    // And the image stays close to the full render.
+    let a = adaptive.accumulator().to_rgb8();
+    let b = full.accumulator().to_rgb8();
+    let mean_error: f64 = a
+        .as_raw()
+        .iter()
+        .zip(b.as_raw())
+        .map(|(&x, &y)| x.abs_diff(y) as f64)
+        .sum::<f64>()
+        / a.as_raw().len() as f64;
+    assert!(mean_error < 1.0, "mean error {mean_error} levels");
+}

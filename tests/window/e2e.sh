@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# End-to-end test of the viewer in a real X window (run inside xvfb-run; see
+# docs/testing.md). Usage: e2e.sh PRISM_BINARY WORK_DIR
+# Opens the viewer on the seed scene, waits for convergence, takes a screenshot with F12,
+# moves the camera with W, waits again, takes a second screenshot with P, photographs the
+# whole screen, and quits with Ctrl+Q. Leaves the viewer's log and the images in WORK_DIR.
+set -euo pipefail
+prism=$1
+work=$2
+log=$work/viewer.log
+export XDG_RUNTIME_DIR=$work/xdg
+mkdir -p "$XDG_RUNTIME_DIR" "$work/shots"
+chmod 700 "$XDG_RUNTIME_DIR"
+
+"$prism" view --width 320 --height 240 --aa 2 --screenshot-dir "$work/shots" >"$log" 2>&1 &
+pid=$!
+trap 'kill $pid 2>/dev/null || true' EXIT
+
+# wait_for TEXT COUNT SECONDS: until the log holds COUNT lines with TEXT.
+wait_for() {
+    for _ in $(seq $(($3 * 10))); do
+        if [ "$(grep -c "$1" "$log" || true)" -ge "$2" ]; then return 0; fi
+        if ! kill -0 $pid 2>/dev/null; then echo "viewer died:"; cat "$log"; exit 1; fi
+        sleep 0.1
+    done
+    echo "timed out waiting for '$1' x$2:"; cat "$log"; exit 1
+}
+
+window=""
+for _ in $(seq 300); do
+    window=$(xdotool search --name '^prism$' 2>/dev/null | head -1 || true)
+    [ -n "$window" ] && break
+    sleep 0.1
+done
+[ -n "$window" ] || { echo "no window appeared:"; cat "$log"; exit 1; }
+xdotool windowfocus --sync "$window"
+
+wait_for "converged" 1 120
+xdotool key --window "$window" F12
+wait_for "saved" 1 30
+
+# Fly forward for a moment: accumulation must restart and converge again.
+xdotool keydown --window "$window" w
+sleep 0.4
+xdotool keyup --window "$window" w
+wait_for "converged" 2 120
+xdotool key --window "$window" p
+wait_for "saved" 2 30
+import -window root "$work/screen.png"
+
+# The window may vanish before xdotool sends the key release; the check below decides.
+xdotool key --window "$window" ctrl+q || true
+for _ in $(seq 100); do
+    kill -0 $pid 2>/dev/null || break
+    sleep 0.1
+done
+if kill -0 $pid 2>/dev/null; then echo "viewer did not quit on Ctrl+Q"; exit 1; fi
+wait $pid
+echo "viewer exited cleanly"
