@@ -42,9 +42,21 @@ impl std::ops::AddAssign for RayCounts {
 /// cycle and does not count towards the bounce limit; this many in a row end the path.
 const MAX_STRAIGHT_CROSSINGS: u32 = 64;
 
+/// How secondary rays avoid re-hitting the surface they start on.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub enum SelfIntersection {
+    /// Offset by the hit point's own error bound (numerics.rs): scale-independent.
+    #[default]
+    ErrorBound,
+    /// Offset along the normal by a fixed distance, as most simple tracers do; kept to
+    /// measure what the robust method buys (docs/numerics.md).
+    FixedEpsilon(f32),
+}
+
 /// Traces rays through one prepared scene.
 pub struct Integrator<'a> {
     scene: &'a PreparedScene,
+    self_intersection: SelfIntersection,
     /// A secondary ray whose contribution to the pixel is weighted below this is not traced.
     /// 0 traces everything (the reference); 1/512 cannot change an 8-bit pixel by more than
     /// rounding.
@@ -56,8 +68,26 @@ impl<'a> Integrator<'a> {
     pub fn new(scene: &'a PreparedScene, min_weight: f32) -> Self {
         Self {
             scene,
+            self_intersection: SelfIntersection::default(),
             min_weight,
             counts: RayCounts::default(),
+        }
+    }
+
+    pub fn with_self_intersection(mut self, policy: SelfIntersection) -> Self {
+        self.self_intersection = policy;
+        self
+    }
+
+    /// Where a ray leaving `surface` towards `w` starts.
+    #[inline]
+    fn leave(&self, surface: &crate::geometry::SurfacePoint, n: Vec3, w: Vec3) -> Vec3 {
+        match self.self_intersection {
+            SelfIntersection::ErrorBound => offset_ray_origin(surface.point, surface.error, n, w),
+            SelfIntersection::FixedEpsilon(eps) => {
+                let side = if w.dot(n) < 0.0 { -eps } else { eps };
+                surface.point + n * side
+            }
         }
     }
 
@@ -65,13 +95,14 @@ impl<'a> Integrator<'a> {
     #[inline]
     pub fn trace_primary(&mut self, ray: Ray) -> Vec3 {
         self.counts.primary += 1;
-        self.trace(ray, 0, 0, 1.0)
+        self.trace(RayQuery::new(ray), 0.0, 0, 0, 1.0)
     }
 
-    fn trace(&mut self, ray: Ray, depth: u32, straight: u32, weight: f32) -> Vec3 {
+    /// The colour along `q` beyond distance `t_min`.
+    fn trace(&mut self, q: RayQuery, t_min: f32, depth: u32, straight: u32, weight: f32) -> Vec3 {
         let scene = self.scene;
-        let q = RayQuery::new(ray);
-        let Some((hit, index)) = scene.intersect(&q, f32::INFINITY) else {
+        let ray = q.ray;
+        let Some((hit, index)) = scene.intersect(&q, t_min, f32::INFINITY) else {
             return scene.background;
         };
         let prim = &scene.primitives[index as usize];
@@ -102,7 +133,7 @@ impl<'a> Integrator<'a> {
                 }
                 let distance = to_light.length();
                 let l = to_light / distance;
-                let origin = offset_ray_origin(p, surface.error, n, l);
+                let origin = self.leave(&surface, n, l);
                 self.counts.shadow += 1;
                 // The shadow ray ends exactly at the light: t = 1 on (light − origin).
                 let shadow = RayQuery::new(Ray::new(origin, light.position - origin));
@@ -122,16 +153,15 @@ impl<'a> Integrator<'a> {
             color = diffuse * opacity + specular;
         }
 
-        if depth >= scene.max_depth {
-            return color;
-        }
+        // Reflection and refraction spend a bounce; a straight crossing does not.
+        let bounces_left = depth < scene.max_depth;
         let reflectivity = material.reflectivity;
-        if reflectivity > 0.0 && weight * reflectivity >= self.min_weight {
+        if bounces_left && reflectivity > 0.0 && weight * reflectivity >= self.min_weight {
             let dir = reflect(ray.dir, n);
-            let origin = offset_ray_origin(p, surface.error, n, dir);
+            let origin = self.leave(&surface, n, dir);
             self.counts.secondary += 1;
-            color += self.trace(Ray::new(origin, dir), depth + 1, 0, weight * reflectivity)
-                * reflectivity;
+            let reflected = RayQuery::new(Ray::new(origin, dir));
+            color += self.trace(reflected, 0.0, depth + 1, 0, weight * reflectivity) * reflectivity;
         }
         let transparency = material.transparency;
         if transparency > 0.0 && weight * transparency >= self.min_weight {
@@ -143,19 +173,23 @@ impl<'a> Integrator<'a> {
                 }
                 _ => None,
             };
-            let (dir, depth, straight) = match bent {
-                Some(d) => (d, depth + 1, 0),
-                None if straight < MAX_STRAIGHT_CROSSINGS => (ray.dir, depth, straight + 1),
+            let transmitted = match bent {
+                Some(_) if !bounces_left => return color,
+                Some(dir) => {
+                    let origin = self.leave(&surface, n, dir);
+                    self.counts.secondary += 1;
+                    let q = RayQuery::new(Ray::new(origin, dir));
+                    self.trace(q, 0.0, depth + 1, 0, weight * transparency)
+                }
+                // Unbent light goes on along the very same ray, past this hit: exact, so an
+                // eta-1 clear object leaves the image untouched.
+                None if straight < MAX_STRAIGHT_CROSSINGS => {
+                    self.counts.secondary += 1;
+                    self.trace(q, hit.t, depth, straight + 1, weight * transparency)
+                }
                 None => return color,
             };
-            let origin = offset_ray_origin(p, surface.error, n, dir);
-            self.counts.secondary += 1;
-            color += self.trace(
-                Ray::new(origin, dir),
-                depth,
-                straight,
-                weight * transparency,
-            ) * transparency;
+            color += transmitted * transparency;
         }
         color
     }

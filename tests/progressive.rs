@@ -47,7 +47,10 @@ fn progressive_equals_one_shot() {
     let mut job = ProgressiveRender::new(scene, camera, settings);
     while let PassOutcome::Finished(_) = job.step(&NEVER) {}
     assert!(job.accumulator() == one_shot.accumulator());
-    assert_eq!(job.accumulator().to_rgb8(), one_shot.accumulator().to_rgb8());
+    assert_eq!(
+        job.accumulator().to_rgb8(),
+        one_shot.accumulator().to_rgb8()
+    );
 }
 
 #[test]
@@ -62,8 +65,17 @@ fn restart_in_the_middle_of_a_pass_gives_the_same_final_image() {
     let bands = AtomicUsize::new(0);
     let cancel_soon = || bands.fetch_add(1, Ordering::SeqCst) >= 3;
     assert_eq!(job.step(&cancel_soon), PassOutcome::Cancelled);
-    let partial: u32 = job.accumulator().pixels.iter().map(|p| p.count).max().unwrap();
-    assert_eq!(partial, 2, "some rows had their second subsample when cancelled");
+    let partial: u32 = job
+        .accumulator()
+        .pixels
+        .iter()
+        .map(|p| p.count)
+        .max()
+        .unwrap();
+    assert_eq!(
+        partial, 2,
+        "some rows had their second subsample when cancelled"
+    );
     while let PassOutcome::Finished(_) = job.step(&NEVER) {}
     assert!(job.accumulator() == reference.accumulator());
 }
@@ -87,13 +99,22 @@ fn adaptive_sampling_stops_flat_pixels_and_refines_edges() {
     let full = render::render(scene.clone(), camera, settings, |_, _| {});
     settings.adaptive = Some(AdaptiveSettings::default());
     let adaptive = render::render(scene, camera, settings, |_, _| {});
-    let counts: Vec<u32> = adaptive.accumulator().pixels.iter().map(|p| p.count).collect();
+    let counts: Vec<u32> = adaptive
+        .accumulator()
+        .pixels
+        .iter()
+        .map(|p| p.count)
+        .collect();
     let min = *counts.iter().min().unwrap();
     let max = *counts.iter().max().unwrap();
     assert!(min >= AdaptiveSettings::default().min_samples, "min {min}");
     assert_eq!(max, 16, "edges keep refining to the full grid");
     let stopped = counts.iter().filter(|&&c| c < 16).count();
-    assert!(stopped * 2 > counts.len(), "only {stopped} of {} pixels stopped early", counts.len());
+    assert!(
+        stopped * 2 > counts.len(),
+        "only {stopped} of {} pixels stopped early",
+        counts.len()
+    );
     // And the image stays close to the full render.
     let a = adaptive.accumulator().to_rgb8();
     let b = full.accumulator().to_rgb8();

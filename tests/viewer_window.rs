@@ -71,16 +71,25 @@ fn viewer_window_end_to_end() {
     assert_eq!(taken.len(), 2, "{taken:?}");
     for shot in &taken {
         let name = shot.file_name().unwrap().to_string_lossy();
-        assert!(name.starts_with("prism-20") && name.ends_with("-4spp.png"), "{name}");
+        assert!(
+            name.starts_with("prism-20") && name.ends_with("-4spp.png"),
+            "{name}"
+        );
     }
     let first = image::open(&taken[0]).unwrap().into_rgb8();
     let second = image::open(&taken[1]).unwrap().into_rgb8();
-    assert_eq!(first.dimensions(), (320, 240), "the image area, without the panel");
+    assert_eq!(
+        first.dimensions(),
+        (320, 240),
+        "the image area, without the panel"
+    );
 
     // The same settings headless.
     let reference = work.path().join("reference.png");
     let render = Command::new(env!("CARGO_BIN_EXE_prism"))
-        .args(["render", "--width", "320", "--height", "240", "--aa", "2", "--quiet"])
+        .args([
+            "render", "--width", "320", "--height", "240", "--aa", "2", "--quiet",
+        ])
         .arg("--out")
         .arg(&reference)
         .output()
@@ -88,14 +97,27 @@ fn viewer_window_end_to_end() {
     assert!(render.status.success());
     let reference = image::open(&reference).unwrap().into_rgb8();
     let off = differing(&first, &reference, 1);
-    assert!(off < 0.001, "{:.4}% of pixels differ from prism render", off * 100.0);
+    assert!(
+        off < 0.001,
+        "{:.4}% of pixels differ from prism render",
+        off * 100.0
+    );
 
     // Flying forward restarted accumulation and changed the view.
     let moved = differing(&second, &first, 8);
-    assert!(moved > 0.05, "only {:.2}% of pixels changed after W", moved * 100.0);
+    assert!(
+        moved > 0.05,
+        "only {:.2}% of pixels changed after W",
+        moved * 100.0
+    );
 
     // The whole screen shows the panel (not black) beside the image.
-    let screen = image::open(work.path().join("screen.png")).unwrap().into_rgb8();
+    let screen = image::open(work.path().join("screen.png"))
+        .unwrap()
+        .into_rgb8();
     let panel_pixel = screen.get_pixel(150, 120);
-    assert!(panel_pixel.0.iter().any(|&c| c > 10), "panel missing: {panel_pixel:?}");
+    assert!(
+        panel_pixel.0.iter().any(|&c| c > 10),
+        "panel missing: {panel_pixel:?}"
+    );
 }

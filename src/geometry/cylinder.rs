@@ -79,9 +79,20 @@ impl Cylinder {
     /// The nearest t in (0, t_max) and the part that was hit.
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<(f32, CylinderPart)> {
+        self.intersect_after(ray, 0.0, t_max)
+    }
+
+    /// The nearest t in (t_min, t_max) and the part that was hit.
+    #[inline]
+    pub fn intersect_after(
+        &self,
+        ray: &Ray,
+        t_min: f32,
+        t_max: f32,
+    ) -> Option<(f32, CylinderPart)> {
         let mut best: Option<(f32, CylinderPart)> = None;
         for (t, part) in self.candidates(ray) {
-            if t > 0.0 && t < t_max && best.is_none_or(|(bt, _)| t < bt) {
+            if t > t_min && t < t_max && best.is_none_or(|(bt, _)| t < bt) {
                 best = Some((t, part));
             }
         }

@@ -43,19 +43,28 @@ pub struct SurfacePoint {
 impl Shape {
     #[inline]
     pub fn intersect(&self, q: &RayQuery, t_max: f32) -> Option<ShapeHit> {
+        self.intersect_after(q, 0.0, t_max)
+    }
+
+    /// The nearest hit with t in (t_min, t_max).
+    #[inline]
+    pub fn intersect_after(&self, q: &RayQuery, t_min: f32, t_max: f32) -> Option<ShapeHit> {
         match self {
-            Shape::Sphere(s) => s.intersect(&q.ray, t_max).map(|t| ShapeHit {
+            Shape::Sphere(s) => s.intersect_after(&q.ray, t_min, t_max).map(|t| ShapeHit {
                 t,
                 detail: HitDetail::Sphere,
             }),
-            Shape::Triangle(tri) => tri.intersect(q, t_max).map(|h| ShapeHit {
+            Shape::Triangle(tri) => tri.intersect_after(q, t_min, t_max).map(|h| ShapeHit {
                 t: h.t,
                 detail: HitDetail::Triangle { b: h.b },
             }),
-            Shape::Cylinder(c) => c.intersect(&q.ray, t_max).map(|(t, part)| ShapeHit {
-                t,
-                detail: HitDetail::Cylinder { part },
-            }),
+            Shape::Cylinder(c) => {
+                c.intersect_after(&q.ray, t_min, t_max)
+                    .map(|(t, part)| ShapeHit {
+                        t,
+                        detail: HitDetail::Cylinder { part },
+                    })
+            }
         }
     }
 

@@ -42,10 +42,16 @@ impl Sphere {
     /// The nearest t in (0, t_max) where the ray meets the sphere.
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<f32> {
+        self.intersect_after(ray, 0.0, t_max)
+    }
+
+    /// The nearest t in (t_min, t_max).
+    #[inline]
+    pub fn intersect_after(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<f32> {
         let (t0, t1) = self.roots(ray)?;
-        if t0 > 0.0 && t0 < t_max {
+        if t0 > t_min && t0 < t_max {
             Some(t0)
-        } else if t1 > 0.0 && t1 < t_max {
+        } else if t1 > t_min && t1 < t_max {
             Some(t1)
         } else {
             None

@@ -33,6 +33,12 @@ impl Triangle {
 
     #[inline]
     pub fn intersect(&self, q: &RayQuery, t_max: f32) -> Option<TriangleHit> {
+        self.intersect_after(q, 0.0, t_max)
+    }
+
+    /// The hit with t in (t_min, t_max), t_min ≥ 0.
+    #[inline]
+    pub fn intersect_after(&self, q: &RayQuery, t_min: f32, t_max: f32) -> Option<TriangleHit> {
         let (kx, ky, kz) = (q.kx, q.ky, q.kz);
         let s = q.shear;
         // Translate to the ray origin, then shear so the ray runs along +z.
@@ -78,7 +84,7 @@ impl Triangle {
         }
         let inv_det = 1.0 / det;
         let t = t_scaled * inv_det;
-        if !(t > 0.0 && t < t_max) {
+        if t <= t_min || t >= t_max || t.is_nan() {
             return None;
         }
         Some(TriangleHit {

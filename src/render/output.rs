@@ -52,9 +52,7 @@ impl PendingPng {
         // Temporary files are private by default; the finished image is an ordinary file.
         #[cfg(unix)]
         builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o644));
-        let temp = builder
-            .tempfile_in(dir)
-            .map_err(err)?;
+        let temp = builder.tempfile_in(dir).map_err(err)?;
         Ok(Self {
             path: path.to_path_buf(),
             temp,

@@ -1,6 +1,7 @@
 //! One pass: subsample k of every (active) pixel, traced in parallel by bands of rows.
 
 use super::accumulator::Accumulator;
+use super::settings::RenderSettings;
 use crate::camera::CameraRays;
 use crate::integrator::{Integrator, RayCounts};
 use crate::sampler::Sampler;
@@ -28,7 +29,7 @@ pub fn render_pass(
     rays: &CameraRays,
     sampler: &Sampler,
     pass: u32,
-    min_weight: f32,
+    settings: &RenderSettings,
     acc: &mut Accumulator,
     active: Option<&[bool]>,
     cancelled: &(dyn Fn() -> bool + Sync),
@@ -44,7 +45,8 @@ pub fn render_pass(
             if cancelled() {
                 return None;
             }
-            let mut integrator = Integrator::new(scene, min_weight);
+            let mut integrator = Integrator::new(scene, settings.min_weight)
+                .with_self_intersection(settings.self_intersection);
             let mut traced = 0u64;
             for (i, sum) in pixels.iter_mut().enumerate() {
                 let index = band_index * band + i;

@@ -100,7 +100,7 @@ impl ProgressiveRender {
             &self.rays,
             &self.sampler,
             self.passes_done,
-            self.settings.min_weight,
+            &self.settings,
             &mut self.accumulator,
             active,
             cancelled,

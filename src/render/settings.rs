@@ -1,5 +1,6 @@
 //! What a render is asked to do, checked before any work starts.
 
+use crate::integrator::SelfIntersection;
 use crate::sampler::SampleLayout;
 use thiserror::Error;
 
@@ -16,6 +17,7 @@ pub struct RenderSettings {
     /// Secondary rays weighted below this are skipped (0 traces all).
     pub min_weight: f32,
     pub adaptive: Option<AdaptiveSettings>,
+    pub self_intersection: SelfIntersection,
 }
 
 /// Stop refining a pixel once its subsamples agree.
@@ -49,6 +51,7 @@ impl RenderSettings {
             layout: SampleLayout::Stratified,
             min_weight: DEFAULT_MIN_WEIGHT,
             adaptive: None,
+            self_intersection: SelfIntersection::ErrorBound,
         }
     }
 
@@ -70,6 +73,11 @@ impl RenderSettings {
         }
         if !(self.min_weight.is_finite() && (0.0..1.0).contains(&self.min_weight)) {
             return Err(SettingsError::MinWeight(self.min_weight));
+        }
+        if let SelfIntersection::FixedEpsilon(e) = self.self_intersection
+            && !(e.is_finite() && e >= 0.0)
+        {
+            return Err(SettingsError::Epsilon(e));
         }
         if let Some(a) = self.adaptive {
             if !(a.tolerance.is_finite() && a.tolerance > 0.0) {
@@ -99,6 +107,8 @@ pub enum SettingsError {
     MinWeight(f32),
     #[error("adaptive tolerance {0}: must be a number greater than zero")]
     Tolerance(f32),
+    #[error("self-intersection epsilon {0}: must be a finite number ≥ 0")]
+    Epsilon(f32),
     #[error("adaptive minimum samples must be at least 1")]
     MinSamples,
 }

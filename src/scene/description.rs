@@ -4,10 +4,15 @@
 use crate::camera::Camera;
 use crate::light::PointLight;
 use crate::material::Material;
-use glam::Vec3;
+use glam::{DVec3, Vec3};
 
+/// Every position in a `Scene` (camera, lights, shapes) is relative to `origin`, which is
+/// kept in f64: world position = origin + position. The loader puts the origin at the
+/// camera's eye, so f32 keeps its full precision around the viewer however far from the
+/// world's origin the scene sits (camera-relative rendering).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Scene {
+    pub origin: DVec3,
     pub camera: Camera,
     pub render: RenderDefaults,
     pub background: Vec3,
@@ -82,7 +87,8 @@ impl ShapeDesc {
         }
     }
 
-    fn transformed(&self, scale: f32, offset: Vec3) -> ShapeDesc {
+    /// The shape scaled about the frame's origin by `scale`, then moved by `offset`.
+    pub fn transformed(&self, scale: f32, offset: Vec3) -> ShapeDesc {
         let p = |v: Vec3| v * scale + offset;
         match self {
             ShapeDesc::Sphere { center, radius } => ShapeDesc::Sphere {
@@ -112,17 +118,19 @@ impl ShapeDesc {
 }
 
 impl Scene {
-    /// The same scene uniformly scaled about the origin by `scale`, then moved by `offset`,
+    /// The same scene uniformly scaled about the world origin by `scale`, then moved by `offset`,
     /// camera and lights included: it must render the same image (the numerical stress
     /// tests rely on this). Lights do not fall off with distance, so their colours stay.
-    pub fn transformed(&self, scale: f32, offset: Vec3) -> Scene {
+    pub fn transformed(&self, scale: f32, offset: DVec3) -> Scene {
         let mut scene = self.clone();
-        scene.camera.eye = self.camera.eye * scale + offset;
+        // world' = world·s + offset, so origin' = origin·s + offset and relative' = relative·s.
+        scene.origin = self.origin * scale as f64 + offset;
+        scene.camera.eye = self.camera.eye * scale;
         for light in &mut scene.lights {
-            light.position = light.position * scale + offset;
+            light.position *= scale;
         }
         for object in &mut scene.objects {
-            object.shape = object.shape.transformed(scale, offset);
+            object.shape = object.shape.transformed(scale, Vec3::ZERO);
             object.material.texture = object.material.texture.scaled(scale);
         }
         scene

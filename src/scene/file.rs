@@ -16,6 +16,8 @@ use std::sync::Arc;
 use toml::Spanned;
 
 type V3 = [f32; 3];
+/// Positions are read in f64 and stored relative to the scene origin (see `Scene`).
+type P3 = [f64; 3];
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -43,8 +45,8 @@ struct SceneFile {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct CameraDef {
-    eye: V3,
-    look_at: Option<V3>,
+    eye: P3,
+    look_at: Option<P3>,
     direction: Option<V3>,
     yaw: Option<f32>,
     pitch: Option<f32>,
@@ -65,7 +67,7 @@ struct RenderDef {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct LightDef {
-    position: V3,
+    position: P3,
     color: Option<V3>,
 }
 
@@ -100,7 +102,7 @@ struct MaterialDef {
 #[serde(deny_unknown_fields)]
 struct SphereDef {
     name: Option<String>,
-    center: V3,
+    center: P3,
     radius: f32,
     material: Option<String>,
 }
@@ -109,7 +111,7 @@ struct SphereDef {
 #[serde(deny_unknown_fields)]
 struct CylinderDef {
     name: Option<String>,
-    base: V3,
+    base: P3,
     radius: f32,
     height: f32,
     material: Option<String>,
@@ -119,7 +121,7 @@ struct CylinderDef {
 #[serde(deny_unknown_fields)]
 struct PolygonDef {
     name: Option<String>,
-    vertices: Vec<V3>,
+    vertices: Vec<P3>,
     material: Option<String>,
 }
 
@@ -127,7 +129,7 @@ struct PolygonDef {
 #[serde(deny_unknown_fields)]
 struct TriangleDef {
     name: Option<String>,
-    vertices: [V3; 3],
+    vertices: [P3; 3],
     material: Option<String>,
 }
 
@@ -135,7 +137,7 @@ struct TriangleDef {
 #[serde(deny_unknown_fields)]
 struct TetrahedronDef {
     name: Option<String>,
-    vertices: [V3; 4],
+    vertices: [P3; 4],
     material: Option<String>,
 }
 
@@ -160,10 +162,12 @@ pub fn parse_scene(source: &str, path: &Path, base_dir: &Path) -> Result<Scene, 
             message: e.message().trim().to_string(),
         }
     })?;
+    let eye = file.camera.get_ref().eye;
     let v = Validator {
         path: path.to_path_buf(),
         source,
         base_dir,
+        origin: glam::DVec3::from(eye),
     };
     v.scene(file)
 }
@@ -172,6 +176,8 @@ struct Validator<'a> {
     path: PathBuf,
     source: &'a str,
     base_dir: &'a Path,
+    /// The camera's eye, in f64: positions are stored relative to it.
+    origin: glam::DVec3,
 }
 
 /// Where a problem is: the span of the table it is in, and how to name that table.
@@ -278,6 +284,20 @@ impl Validator<'_> {
         }
     }
 
+    /// A position, relative to the scene origin.
+    fn position(&self, at: &Item, field: &str, v: P3) -> Result<Vec3, SceneError> {
+        let relative = (glam::DVec3::from(v) - self.origin).as_vec3();
+        if v.iter().all(|c| c.is_finite()) && relative.is_finite() {
+            Ok(relative)
+        } else {
+            Err(self.field_error(
+                at,
+                field,
+                format!("`{field}` must hold finite numbers within ±3e38 of the camera, got {v:?}"),
+            ))
+        }
+    }
+
     fn color(&self, at: &Item, field: &str, v: V3) -> Result<Vec3, SceneError> {
         let c = self.point(at, field, v)?;
         if c.min_element() >= 0.0 {
@@ -318,7 +338,7 @@ impl Validator<'_> {
                 };
                 let l = l.get_ref();
                 Ok(PointLight {
-                    position: self.point(&at, "position", l.position)?,
+                    position: self.position(&at, "position", l.position)?,
                     color: self.color(&at, "color", l.color.unwrap_or([1.0; 3]))?,
                 })
             })
@@ -365,7 +385,7 @@ impl Validator<'_> {
             let d = s.get_ref();
             add("spheres", i, s.span(), &d.name, &d.material, &|at| {
                 Ok(ShapeDesc::Sphere {
-                    center: self.point(at, "center", d.center)?,
+                    center: self.position(at, "center", d.center)?,
                     radius: self.positive(at, "radius", d.radius)?,
                 })
             })?;
@@ -374,7 +394,7 @@ impl Validator<'_> {
             let d = c.get_ref();
             add("cylinders", i, c.span(), &d.name, &d.material, &|at| {
                 Ok(ShapeDesc::Cylinder {
-                    base: self.point(at, "base", d.base)?,
+                    base: self.position(at, "base", d.base)?,
                     radius: self.positive(at, "radius", d.radius)?,
                     height: self.positive(at, "height", d.height)?,
                 })
@@ -413,6 +433,7 @@ impl Validator<'_> {
             })?;
         }
         Ok(Scene {
+            origin: self.origin,
             camera,
             render,
             background,
@@ -422,10 +443,10 @@ impl Validator<'_> {
         })
     }
 
-    fn vertices(&self, at: &Item, vs: &[V3]) -> Result<Vec<Vec3>, SceneError> {
+    fn vertices(&self, at: &Item, vs: &[P3]) -> Result<Vec<Vec3>, SceneError> {
         vs.iter()
             .enumerate()
-            .map(|(i, &v)| self.point(at, &format!("vertices[{i}]"), v))
+            .map(|(i, &v)| self.position(at, &format!("vertices[{i}]"), v))
             .collect()
     }
 
@@ -435,7 +456,7 @@ impl Validator<'_> {
             name: "camera",
         };
         let c = c.get_ref();
-        let eye = self.point(&at, "eye", c.eye)?;
+        let eye = self.position(&at, "eye", c.eye)?;
         let vfov = self.in_range(&at, "fov", c.fov, MIN_VFOV, MAX_VFOV)?;
         let ways = [
             c.look_at.is_some(),
@@ -449,7 +470,7 @@ impl Validator<'_> {
             ));
         }
         let direction = if let Some(target) = c.look_at {
-            let target = self.point(&at, "look_at", target)?;
+            let target = self.position(&at, "look_at", target)?;
             if target == eye {
                 return Err(self.error(&at, "`look_at` equals `eye`: the camera has no direction"));
             }

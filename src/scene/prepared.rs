@@ -151,12 +151,14 @@ impl PreparedScene {
         }
     }
 
-    /// The nearest hit in (0, t_max) and the index of the primitive hit.
+    /// The nearest hit in (t_min, t_max) and the index of the primitive hit.
     #[inline]
-    pub fn intersect(&self, q: &RayQuery, t_max: f32) -> Option<(ShapeHit, u32)> {
+    pub fn intersect(&self, q: &RayQuery, t_min: f32, t_max: f32) -> Option<(ShapeHit, u32)> {
         let mut best: Option<(ShapeHit, u32)> = None;
         self.bvh.closest(q, t_max, |i, t_max| {
-            let hit = self.primitives[i as usize].shape.intersect(q, t_max)?;
+            let hit = self.primitives[i as usize]
+                .shape
+                .intersect_after(q, t_min, t_max)?;
             best = Some((hit, i));
             Some(hit.t)
         });

@@ -142,12 +142,21 @@ impl PanelState {
         ui.label(RichText::new("Camera").strong());
         let before = self.camera;
         let mut c = self.camera;
-        ui.horizontal(|ui| {
-            ui.label("eye");
-            ui.add(DragValue::new(&mut c.eye.x).speed(0.1).prefix("x "));
-            ui.add(DragValue::new(&mut c.eye.y).speed(0.1).prefix("y "));
-            ui.add(DragValue::new(&mut c.eye.z).speed(0.1).prefix("z "));
-        });
+        // Shown in world coordinates; the scene stores them relative to its f64 origin.
+        let origin = self.scene.origin;
+        let mut world = origin + c.eye.as_dvec3();
+        let eye_changed = ui
+            .horizontal(|ui| {
+                ui.label("eye");
+                let x = ui.add(DragValue::new(&mut world.x).speed(0.1).prefix("x "));
+                let y = ui.add(DragValue::new(&mut world.y).speed(0.1).prefix("y "));
+                let z = ui.add(DragValue::new(&mut world.z).speed(0.1).prefix("z "));
+                x.changed() || y.changed() || z.changed()
+            })
+            .inner;
+        if eye_changed {
+            c.eye = (world - origin).as_vec3();
+        }
         ui.add(Slider::new(&mut c.yaw, -180.0..=180.0).text("yaw °"));
         ui.add(
             Slider::new(&mut c.pitch, -MAX_PITCH..=MAX_PITCH)
