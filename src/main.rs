@@ -1,6 +1,7 @@
 //! The `prism` command: `view` (the default) opens the interactive viewer, `render` renders
 //! a PNG headless, `bench` measures run time against image error.
 
+mod bench;
 mod cli;
 #[cfg(feature = "viewer")]
 mod viewer;

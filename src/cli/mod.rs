@@ -21,6 +21,8 @@ pub enum Command {
     View(ViewArgs),
     /// Render a scene to a PNG file, headless.
     Render(render::RenderArgs),
+    /// Measure speed and accuracy (the figures in docs/).
+    Bench(crate::bench::BenchArgs),
 }
 
 #[derive(clap::Args, Debug, Default)]
@@ -45,6 +47,7 @@ pub fn run(args: Args) -> Result<()> {
     match args.command {
         Some(Command::Render(a)) => render::run(a),
         Some(Command::View(a)) => view(a),
+        Some(Command::Bench(a)) => crate::bench::run(a),
         None => view(ViewArgs::default()),
     }
 }
