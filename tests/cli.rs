@@ -288,3 +288,20 @@ fn missing_scene_file_is_named() {
     assert_eq!(out.status.code(), Some(2));
     assert!(stderr.contains("/no/such/scene.toml"), "{stderr}");
 }
+
+#[test]
+fn non_finite_and_extreme_numbers_are_rejected() {
+    let case = Case::new();
+    case.fails_with(&replace("radius = 1", "radius = nan"), &[], &["radius", "finite"]);
+    case.fails_with(&replace("eye = [0, 0, 0]", "eye = [0, inf, 0]"), &[], &["camera", "eye"]);
+    case.fails_with(&replace("fov = 40", "fov = -40"), &[], &["fov"]);
+    case.fails_with(&replace("fov = 40", "fov = 1e30"), &[], &["fov"]);
+    case.fails_with(
+        &replace("center = [0, 0, -5]", "center = [0, 0, -1e300]"),
+        &[],
+        &["center", "finite"],
+    );
+    case.fails_with(GOOD, &["--width", "100000"], &["at most 16384"]);
+    case.fails_with(GOOD, &["--adaptive", "--tolerance", "nan"], &["tolerance"]);
+    case.fails_with(GOOD, &["--adaptive", "--tolerance", "-1"], &["tolerance"]);
+}

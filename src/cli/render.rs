@@ -38,7 +38,7 @@ pub struct RenderArgs {
     #[arg(long)]
     pub adaptive: bool,
     /// Adaptive tolerance: standard error of a pixel's luminance, 0..1 scale.
-    #[arg(long, default_value_t = AdaptiveSettings::default().tolerance)]
+    #[arg(long, default_value_t = AdaptiveSettings::default().tolerance, allow_negative_numbers = true)]
     pub tolerance: f32,
     /// Trace every secondary ray, however faint (the unoptimised reference).
     #[arg(long)]
