@@ -121,7 +121,13 @@ impl<'a> Integrator<'a> {
         let opacity = 1.0 - material.transparency;
         let mut color = Vec3::ZERO;
         if opacity > 0.0 || material.specular > 0.0 {
-            let uv = object.planar_uv.map_or(surface.uv, |f| f.uv(p));
+            let uv = if !material.texture.needs_uv() {
+                (0.0, 0.0)
+            } else if let Some(planar) = object.planar_uv {
+                planar.uv(p)
+            } else {
+                prim.shape.uv(&surface, &hit)
+            };
             let base = material.texture.eval(uv, p - object.origin);
             let mut diffuse = base * scene.ambient * material.ambient;
             let mut specular = Vec3::ZERO;

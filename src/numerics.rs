@@ -46,21 +46,13 @@ pub fn next_float_down(v: f32) -> f32 {
 /// ray from the returned origin cannot intersect the surface it starts on.
 #[inline]
 pub fn offset_ray_origin(p: Vec3, error: Vec3, n: Vec3, w: Vec3) -> Vec3 {
-    let distance = n.abs().dot(error);
-    let mut offset = n * distance;
-    if w.dot(n) < 0.0 {
-        offset = -offset;
-    }
-    let mut origin = p + offset;
-    // The addition itself rounds: step one more float outward so the result stays outside.
-    for axis in 0..3 {
-        if offset[axis] > 0.0 {
-            origin[axis] = next_float_up(origin[axis]);
-        } else if offset[axis] < 0.0 {
-            origin[axis] = next_float_down(origin[axis]);
-        }
-    }
-    origin
+    // The addition p + offset rounds each coordinate by up to half a step of p; adding one
+    // full relative step per coordinate to the bound keeps the result outside without
+    // pbrt's per-axis next-float stepping (cheaper, and branch-free).
+    let bound = error + p.abs() * f32::EPSILON;
+    let distance = n.abs().dot(bound);
+    let offset = if w.dot(n) < 0.0 { -n } else { n } * distance;
+    p + offset
 }
 
 /// The two real roots t0 ≤ t1 of a·t² − 2·β·t + c = 0 given the discriminant

@@ -109,6 +109,11 @@ impl Texture {
         }
     }
 
+    /// Whether `eval` reads the surface (u, v).
+    pub fn needs_uv(&self) -> bool {
+        matches!(self, Texture::Image(_))
+    }
+
     /// A representative colour (the mean over the pattern).
     pub fn mean(&self) -> Vec3 {
         match self {

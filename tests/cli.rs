@@ -292,8 +292,16 @@ fn missing_scene_file_is_named() {
 #[test]
 fn non_finite_and_extreme_numbers_are_rejected() {
     let case = Case::new();
-    case.fails_with(&replace("radius = 1", "radius = nan"), &[], &["radius", "finite"]);
-    case.fails_with(&replace("eye = [0, 0, 0]", "eye = [0, inf, 0]"), &[], &["camera", "eye"]);
+    case.fails_with(
+        &replace("radius = 1", "radius = nan"),
+        &[],
+        &["radius", "finite"],
+    );
+    case.fails_with(
+        &replace("eye = [0, 0, 0]", "eye = [0, inf, 0]"),
+        &[],
+        &["camera", "eye"],
+    );
     case.fails_with(&replace("fov = 40", "fov = -40"), &[], &["fov"]);
     case.fails_with(&replace("fov = 40", "fov = 1e30"), &[], &["fov"]);
     case.fails_with(

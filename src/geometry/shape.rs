@@ -37,7 +37,6 @@ pub struct SurfacePoint {
     pub error: Vec3,
     /// Outward (for closed shapes) or winding-order (for triangles) unit normal.
     pub normal: Vec3,
-    pub uv: (f32, f32),
 }
 
 impl Shape {
@@ -86,7 +85,6 @@ impl Shape {
                     point,
                     error,
                     normal,
-                    uv: Sphere::uv(normal),
                 }
             }
             (Shape::Triangle(tri), HitDetail::Triangle { b }) => {
@@ -95,7 +93,6 @@ impl Shape {
                     point,
                     error,
                     normal: tri.normal,
-                    uv: (b[1], b[2]),
                 }
             }
             (Shape::Cylinder(c), HitDetail::Cylinder { part }) => {
@@ -104,9 +101,19 @@ impl Shape {
                     point,
                     error,
                     normal,
-                    uv: c.uv(point, part),
                 }
             }
+            (shape, detail) => unreachable!("hit {detail:?} does not belong to {shape:?}"),
+        }
+    }
+
+    /// Texture coordinates of a surface point: computed only for textures that use them
+    /// (the trigonometry is a noticeable share of a pass otherwise).
+    pub fn uv(&self, surface: &SurfacePoint, hit: &ShapeHit) -> (f32, f32) {
+        match (self, hit.detail) {
+            (Shape::Sphere(_), _) => Sphere::uv(surface.normal),
+            (Shape::Triangle(_), HitDetail::Triangle { b }) => (b[1], b[2]),
+            (Shape::Cylinder(c), HitDetail::Cylinder { part }) => c.uv(surface.point, part),
             (shape, detail) => unreachable!("hit {detail:?} does not belong to {shape:?}"),
         }
     }
