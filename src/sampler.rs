@@ -49,8 +49,16 @@ impl Sampler {
     /// The position of subsample `k` inside pixel (x, y), in [0, 1)².
     #[inline]
     pub fn offset(&self, x: u32, y: u32, k: u32) -> (f32, f32) {
+        // Each pixel walks the same farthest-point order, rotated on the torus by its own
+        // hashed shift (a Cranley–Patterson rotation in whole cells). Rotation keeps every
+        // prefix of the order as evenly spread, but no longer the same in every pixel: a
+        // part-way image is unbiased noise rather than the whole picture shifted by a
+        // fraction of a pixel.
+        let n = self.n;
+        let shift = hash(x.wrapping_mul(0x9e37_79b1) ^ hash(y ^ 0x5bd1_e995));
         let (cx, cy) = self.order[k as usize];
-        let inv = 1.0 / self.n as f32;
+        let (cx, cy) = ((cx + shift % n) % n, (cy + (shift >> 16) % n) % n);
+        let inv = 1.0 / n as f32;
         let (jx, jy) = match self.layout {
             SampleLayout::Grid => (0.5, 0.5),
             SampleLayout::Stratified => {
@@ -138,12 +146,36 @@ mod tests {
     }
 
     #[test]
-    fn first_subsample_is_central_and_second_is_far() {
+    fn second_subsample_is_far_from_the_first_in_every_pixel() {
         let s = Sampler::new(4, SampleLayout::Grid);
-        assert_eq!(s.offset(0, 0, 0), (0.625, 0.625));
-        let (x, y) = s.offset(0, 0, 1);
         let d = |a: f32, b: f32| (a - b).abs().min(1.0 - (a - b).abs());
-        assert!(d(x, 0.625) >= 0.5 && d(y, 0.625) >= 0.5);
+        let mut firsts = std::collections::HashSet::new();
+        for (px, py) in [(0, 0), (1, 0), (0, 1), (17, 5), (640, 480)] {
+            let (x0, y0) = s.offset(px, py, 0);
+            let (x1, y1) = s.offset(px, py, 1);
+            assert!(d(x0, x1) >= 0.5 && d(y0, y1) >= 0.5, "pixel ({px}, {py})");
+            firsts.insert(((x0 * 4.0) as u32, (y0 * 4.0) as u32));
+        }
+        assert!(firsts.len() > 1, "pixels start in different cells");
+    }
+
+    #[test]
+    fn every_prefix_of_sixteen_is_a_two_by_two_spaced_lattice() {
+        // On the torus, the first 4 of a 4×4 order are the cells of a 2-spaced lattice.
+        let s = Sampler::new(4, SampleLayout::Grid);
+        for (px, py) in [(3, 9), (100, 7)] {
+            let mut cells: Vec<(u32, u32)> = (0..4)
+                .map(|k| {
+                    let (x, y) = s.offset(px, py, k);
+                    ((x * 4.0) as u32, (y * 4.0) as u32)
+                })
+                .collect();
+            cells.sort();
+            let (ox, oy) = (cells[0].0 % 2, cells[0].1 % 2);
+            let mut lattice = vec![(ox, oy), (ox, oy + 2), (ox + 2, oy), (ox + 2, oy + 2)];
+            lattice.sort();
+            assert_eq!(cells, lattice);
+        }
     }
 
     #[test]

@@ -1,6 +1,8 @@
 //! `prism bench`: measurements that back the figures in docs/.
 
+mod convergence;
 mod numerics;
+mod scenes;
 
 use anyhow::Result;
 
@@ -12,6 +14,26 @@ pub struct BenchArgs {
 
 #[derive(clap::Subcommand, Debug)]
 pub enum BenchKind {
+    /// Run time against image error for each sampling strategy, and the headline speed
+    /// figures (docs/benchmarks/).
+    Convergence {
+        /// A small image and few runs: proves the bench works in well under a minute.
+        #[arg(long)]
+        quick: bool,
+        /// Where the CSV, the plot and the table go (default: docs/benchmarks, or
+        /// target/prism-bench/quick with --quick).
+        #[arg(long)]
+        out: Option<std::path::PathBuf>,
+        /// Timed runs per figure (the median is reported).
+        #[arg(long, default_value_t = 7)]
+        runs: usize,
+        /// Tolerance of the adaptive strategies.
+        #[arg(long, default_value_t = prism::render::AdaptiveSettings::default().tolerance)]
+        tolerance: f32,
+        /// Minimum subsamples per pixel of the adaptive strategies.
+        #[arg(long, default_value_t = prism::render::AdaptiveSettings::default().min_samples)]
+        min_samples: u32,
+    },
     /// Numerical accuracy tables (docs/numerics.md).
     Numerics {
         /// Timed runs per configuration (the median is reported).
@@ -23,5 +45,28 @@ pub enum BenchKind {
 pub fn run(args: BenchArgs) -> Result<()> {
     match args.what {
         BenchKind::Numerics { runs } => numerics::run(runs.max(1)),
+        BenchKind::Convergence {
+            quick,
+            out,
+            runs,
+            tolerance,
+            min_samples,
+        } => {
+            let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+            let out_dir = out.unwrap_or_else(|| {
+                if quick {
+                    root.join("target/prism-bench/quick")
+                } else {
+                    root.join("docs/benchmarks")
+                }
+            });
+            convergence::run(convergence::Config {
+                quick,
+                tolerance,
+                min_samples: min_samples.max(1),
+                out_dir,
+                runs: if quick { runs.clamp(1, 3) } else { runs.max(1) },
+            })
+        }
     }
 }

@@ -88,6 +88,20 @@ impl PendingPng {
     }
 }
 
+/// Writes `bytes` to `path` atomically (the same temporary-file-and-rename as PNGs).
+pub fn write_bytes(path: &Path, bytes: &[u8]) -> Result<PathBuf, OutputError> {
+    let pending = PendingPng::create(path)?;
+    let fail = |e: std::io::Error| OutputError::Write {
+        path: path.to_path_buf(),
+        reason: e.to_string(),
+    };
+    let mut file = pending.temp.as_file();
+    file.write_all(bytes).map_err(fail)?;
+    file.sync_all().map_err(fail)?;
+    pending.temp.persist(path).map_err(|e| fail(e.error))?;
+    Ok(path.to_path_buf())
+}
+
 /// Writes `image` to `path` atomically.
 pub fn write_png(path: &Path, image: &image::RgbImage) -> Result<PathBuf, OutputError> {
     PendingPng::create(path)?.finish(image)

@@ -1,0 +1,481 @@
+//! `prism bench convergence`: run time against image error for each sampling strategy on
+//! the seed scene, and the headline speed figures (docs/benchmarks/).
+
+use super::scenes::sphere_field;
+use anyhow::{Context, Result};
+use glam::Vec3;
+use plotters::prelude::*;
+use prism::camera::Camera;
+use prism::integrator::RayCounts;
+use prism::render::{
+    Accumulator, AdaptiveSettings, PassOutcome, ProgressiveRender, RenderSettings,
+};
+use prism::sampler::SampleLayout;
+use prism::scene::{PreparedScene, Scene, load_scene};
+use std::fmt::Write as _;
+use std::hash::{Hash, Hasher};
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::time::Instant;
+
+pub struct Config {
+    pub quick: bool,
+    /// The adaptive strategy's tolerance.
+    pub tolerance: f32,
+    /// The adaptive strategy's minimum subsamples per pixel.
+    pub min_samples: u32,
+    pub out_dir: PathBuf,
+    pub runs: usize,
+}
+
+struct Size {
+    width: u32,
+    height: u32,
+    reference_aa: u32,
+}
+
+/// One measurement: a strategy's image after some passes.
+struct Point {
+    strategy: String,
+    passes: u32,
+    samples_per_pixel: f64,
+    seconds: f64,
+    rmse: f64,
+    flip: f64,
+}
+
+const NEVER: fn() -> bool = || false;
+
+pub fn run(cfg: Config) -> Result<()> {
+    let size = if cfg.quick {
+        Size {
+            width: 160,
+            height: 120,
+            reference_aa: 16,
+        }
+    } else {
+        Size {
+            width: 800,
+            height: 600,
+            reference_aa: 16,
+        }
+    };
+    std::fs::create_dir_all(&cfg.out_dir)
+        .with_context(|| format!("cannot create {}", cfg.out_dir.display()))?;
+    let scene_path = prism::seed_scene_path();
+    let scene = load_scene(&scene_path)?;
+    let prepared = Arc::new(PreparedScene::new(&scene));
+    let reference = reference(&scene_path, &prepared, scene.camera, &size)?;
+    let reference_rgb8 = to_rgb8(&reference, size.width, size.height);
+
+    let mut points = Vec::new();
+    let mut rays = RayCounts::default();
+    let mut ray_seconds = 0.0;
+    let mut measure = |strategy: &str, settings: RenderSettings, every_pass: bool| {
+        let mut job = ProgressiveRender::new(prepared.clone(), scene.camera, settings);
+        let mut seconds = 0.0;
+        while let PassOutcome::Finished(stats) = job.step(&NEVER) {
+            seconds += stats.seconds;
+            rays += stats.rays;
+            ray_seconds += stats.seconds;
+            if every_pass || job.is_converged() {
+                let (rmse, flip) = errors(job.accumulator(), &reference, &reference_rgb8);
+                eprintln!(
+                    "{strategy:>24}: pass {:>2}, {:>7.3} s, RMSE {rmse:.5}, FLIP {flip:.5}",
+                    job.passes_done(),
+                    seconds
+                );
+                points.push(Point {
+                    strategy: strategy.to_string(),
+                    passes: job.passes_done(),
+                    samples_per_pixel: job.samples_per_pixel(),
+                    seconds,
+                    rmse,
+                    flip,
+                });
+            }
+        }
+    };
+    let settings = |aa: u32, layout: SampleLayout, adaptive: Option<AdaptiveSettings>| {
+        let mut s = RenderSettings::new(size.width, size.height, aa);
+        s.layout = layout;
+        s.adaptive = adaptive;
+        s
+    };
+    measure(
+        "seed 2×2 grid",
+        settings(2, SampleLayout::Grid, None),
+        false,
+    );
+    for n in [1, 2, 3, 4, 6, 8] {
+        measure(
+            "fixed N×N grid",
+            settings(n, SampleLayout::Grid, None),
+            false,
+        );
+    }
+    measure(
+        "progressive",
+        settings(8, SampleLayout::Stratified, None),
+        true,
+    );
+    measure(
+        "progressive, cell centres",
+        settings(8, SampleLayout::Grid, None),
+        true,
+    );
+    let adaptive = Some(AdaptiveSettings {
+        tolerance: cfg.tolerance,
+        min_samples: cfg.min_samples,
+    });
+    measure(
+        "adaptive",
+        settings(8, SampleLayout::Stratified, adaptive),
+        true,
+    );
+    measure(
+        "adaptive, cell centres",
+        settings(8, SampleLayout::Grid, adaptive),
+        true,
+    );
+
+    write_csv(&cfg.out_dir.join("convergence.csv"), &points)?;
+    plot(&cfg.out_dir.join("convergence.svg"), &points)?;
+    let headline = headline(&cfg, &scene, &prepared, &size, &points, rays, ray_seconds)?;
+    std::fs::write(cfg.out_dir.join("results.md"), &headline)?;
+    println!("{headline}");
+    eprintln!(
+        "wrote convergence.csv, convergence.svg and results.md in {}",
+        cfg.out_dir.display()
+    );
+    Ok(())
+}
+
+/// The converged reference (reference_aa² subsamples, every secondary ray traced), cached
+/// under target/ by scene text and size.
+fn reference(
+    scene_path: &Path,
+    scene: &Arc<PreparedScene>,
+    camera: Camera,
+    size: &Size,
+) -> Result<Vec<Vec3>> {
+    let text = std::fs::read(scene_path)?;
+    let mut hasher = std::collections::hash_map::DefaultHasher::new();
+    (
+        text,
+        size.width,
+        size.height,
+        size.reference_aa,
+        env!("CARGO_PKG_VERSION"),
+    )
+        .hash(&mut hasher);
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/prism-bench");
+    std::fs::create_dir_all(&dir)?;
+    let cache = dir.join(format!("reference-{:016x}.f32", hasher.finish()));
+    let count = (size.width * size.height) as usize;
+    if let Ok(bytes) = std::fs::read(&cache)
+        && bytes.len() == count * 12
+    {
+        eprintln!("reference: cached {}", cache.display());
+        return Ok(bytes
+            .chunks_exact(12)
+            .map(|c| {
+                let f = |i: usize| f32::from_le_bytes(c[i..i + 4].try_into().unwrap());
+                Vec3::new(f(0), f(4), f(8))
+            })
+            .collect());
+    }
+    let start = Instant::now();
+    let mut settings = RenderSettings::new(size.width, size.height, size.reference_aa);
+    settings.min_weight = 0.0;
+    let mut job = ProgressiveRender::new(scene.clone(), camera, settings);
+    while let PassOutcome::Finished(_) = job.step(&NEVER) {}
+    let means: Vec<Vec3> = job.accumulator().pixels.iter().map(|p| p.mean()).collect();
+    let bytes: Vec<u8> = means
+        .iter()
+        .flat_map(|v| [v.x, v.y, v.z])
+        .flat_map(f32::to_le_bytes)
+        .collect();
+    prism::render::output::write_bytes(&cache, &bytes)?;
+    eprintln!(
+        "reference: {} subsamples per pixel in {:.1} s, cached {}",
+        size.reference_aa * size.reference_aa,
+        start.elapsed().as_secs_f64(),
+        cache.display()
+    );
+    Ok(means)
+}
+
+fn to_rgb8(means: &[Vec3], width: u32, height: u32) -> Vec<u8> {
+    let mut v = Vec::with_capacity(means.len() * 3);
+    for m in means {
+        v.extend_from_slice(&prism::render::accumulator::to_8bit(*m));
+    }
+    debug_assert_eq!(v.len(), (width * height * 3) as usize);
+    v
+}
+
+/// RMSE of the pixel means (clamped to the display range) and mean FLIP of the 8-bit images.
+fn errors(acc: &Accumulator, reference: &[Vec3], reference_rgb8: &[u8]) -> (f64, f64) {
+    let mut sum = 0.0f64;
+    for (p, r) in acc.pixels.iter().zip(reference) {
+        let d = p.mean().clamp(Vec3::ZERO, Vec3::ONE) - r.clamp(Vec3::ZERO, Vec3::ONE);
+        sum += d.length_squared() as f64;
+    }
+    let rmse = (sum / (reference.len() * 3) as f64).sqrt();
+    let test = nv_flip::FlipImageRgb8::with_data(acc.width, acc.height, acc.to_rgb8().as_raw());
+    let refi = nv_flip::FlipImageRgb8::with_data(acc.width, acc.height, reference_rgb8);
+    let map = nv_flip::flip(refi, test, nv_flip::DEFAULT_PIXELS_PER_DEGREE);
+    let flip = nv_flip::FlipPool::from_image(&map).mean() as f64;
+    (rmse, flip)
+}
+
+fn write_csv(path: &Path, points: &[Point]) -> Result<()> {
+    let mut csv = String::from("strategy,passes,samples_per_pixel,seconds,rmse,mean_flip\n");
+    for p in points {
+        writeln!(
+            csv,
+            "{},{},{:.4},{:.6},{:.6},{:.6}",
+            p.strategy, p.passes, p.samples_per_pixel, p.seconds, p.rmse, p.flip
+        )?;
+    }
+    prism::render::output::write_bytes(path, csv.as_bytes())?;
+    Ok(())
+}
+
+fn plot(path: &Path, points: &[Point]) -> Result<()> {
+    let strategies = [
+        "seed 2×2 grid",
+        "fixed N×N grid",
+        "progressive",
+        "progressive, cell centres",
+        "adaptive",
+        "adaptive, cell centres",
+    ];
+    let colors = [
+        RGBColor(200, 0, 0),
+        RGBColor(230, 140, 0),
+        RGBColor(0, 90, 200),
+        RGBColor(120, 170, 240),
+        RGBColor(0, 150, 60),
+        RGBColor(130, 210, 130),
+    ];
+    let root = SVGBackend::new(path, (1100, 460)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let (left, right) = root.split_horizontally(550);
+    for (area, metric, name) in [(&left, 0, "mean FLIP"), (&right, 1, "RMSE")] {
+        let value = |p: &Point| if metric == 0 { p.flip } else { p.rmse };
+        let xs = points.iter().map(|p| p.seconds);
+        let ys = points.iter().map(value);
+        let (x0, x1) = (
+            xs.clone().fold(f64::MAX, f64::min) * 0.8,
+            xs.fold(0.0, f64::max) * 1.25,
+        );
+        let (y0, y1) = (
+            ys.clone().fold(f64::MAX, f64::min) * 0.8,
+            ys.fold(0.0, f64::max) * 1.25,
+        );
+        let mut chart = ChartBuilder::on(area)
+            .caption(format!("{name} against render time"), ("sans-serif", 18))
+            .margin(12)
+            .x_label_area_size(40)
+            .y_label_area_size(60)
+            .build_cartesian_2d((x0..x1).log_scale(), (y0.max(1e-6)..y1).log_scale())?;
+        chart
+            .configure_mesh()
+            .bold_line_style(RGBColor(215, 215, 215))
+            .light_line_style(RGBColor(240, 240, 240))
+            .x_desc("seconds (2 threads, log)")
+            .y_desc(format!("{name} against the reference (log)"))
+            .draw()?;
+        for (strategy, color) in strategies.iter().zip(colors) {
+            let series: Vec<(f64, f64)> = points
+                .iter()
+                .filter(|p| p.strategy == *strategy)
+                .map(|p| (p.seconds, value(p)))
+                .collect();
+            chart
+                .draw_series(LineSeries::new(series.clone(), color.stroke_width(2)))?
+                .label(*strategy)
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+                });
+            // Single-image strategies (the seed's 2×2) are one larger dot.
+            let radius = if series.len() == 1 { 6 } else { 3 };
+            chart.draw_series(
+                series
+                    .iter()
+                    .map(|&p| Circle::new(p, radius, color.filled())),
+            )?;
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .border_style(BLACK)
+            .background_style(WHITE.mix(0.9))
+            .draw()?;
+    }
+    root.present()?;
+    Ok(())
+}
+
+/// Median seconds of `runs` first passes of `scene` at the given size.
+fn pass_seconds(scene: &Arc<PreparedScene>, camera: Camera, w: u32, h: u32, runs: usize) -> f64 {
+    let mut times: Vec<f64> = (0..runs)
+        .map(|_| {
+            let mut job =
+                ProgressiveRender::new(scene.clone(), camera, RenderSettings::new(w, h, 1));
+            match job.step(&NEVER) {
+                PassOutcome::Finished(s) => s.seconds,
+                _ => unreachable!("a first pass always finishes"),
+            }
+        })
+        .collect();
+    times.sort_by(f64::total_cmp);
+    times[times.len() / 2]
+}
+
+fn first_below<'a>(points: &'a [Point], strategy: &str, flip: f64) -> Option<&'a Point> {
+    points
+        .iter()
+        .find(|p| p.strategy == strategy && p.flip <= flip)
+}
+
+fn headline(
+    cfg: &Config,
+    scene: &Scene,
+    prepared: &Arc<PreparedScene>,
+    size: &Size,
+    points: &[Point],
+    rays: RayCounts,
+    ray_seconds: f64,
+) -> Result<String> {
+    let runs = cfg.runs;
+    let (w, h) = (size.width, size.height);
+    let mut md = String::new();
+    let mode = if cfg.quick { " (quick mode)" } else { "" };
+    writeln!(md, "# Benchmark results{mode}\n")?;
+    writeln!(
+        md,
+        "Seed scene, {w}×{h}, reference {n}×{n} subsamples. Made by `cargo run --release -- bench convergence{}`; \
+         medians of {runs} runs on a shared 2-core machine.\n",
+        if cfg.quick { " --quick" } else { "" },
+        n = size.reference_aa
+    )?;
+    let pass = pass_seconds(prepared, scene.camera, w, h, runs);
+    writeln!(md, "| measure | value |\n|---|---|")?;
+    writeln!(
+        md,
+        "| one progressive pass (1 subsample per pixel), median | {:.1} ms |",
+        pass * 1e3
+    )?;
+    writeln!(
+        md,
+        "| rays per second, all kinds (over every pass above) | {:.1} M/s ({:.1} M/s per core) |",
+        rays.total() as f64 / ray_seconds / 1e6,
+        rays.total() as f64 / ray_seconds / 2e6
+    )?;
+    writeln!(
+        md,
+        "| rays traced: primary / shadow / secondary | {} / {} / {} |",
+        rays.primary, rays.shadow, rays.secondary
+    )?;
+    let one = rayon::ThreadPoolBuilder::new().num_threads(1).build()?;
+    let single = one.install(|| pass_seconds(prepared, scene.camera, w, h, runs));
+    writeln!(
+        md,
+        "| speed-up from 1 to 2 threads | {:.2}× ({:.1} ms → {:.1} ms) |",
+        single / pass,
+        single * 1e3,
+        pass * 1e3
+    )?;
+
+    // Time to reach the error of the full 4×4 grid.
+    let grid4 = points
+        .iter()
+        .find(|p| p.strategy == "fixed N×N grid" && p.passes == 16)
+        .context("the 4×4 grid was measured")?;
+    writeln!(
+        md,
+        "\n## Time to reach the 4×4 grid's error (mean FLIP {:.5})\n",
+        grid4.flip
+    )?;
+    writeln!(
+        md,
+        "| strategy | time | subsamples per pixel | share of the grid's time |\n|---|---|---|---|"
+    )?;
+    writeln!(
+        md,
+        "| fixed 4×4 grid | {:.3} s | 16 | 100% |",
+        grid4.seconds
+    )?;
+    for strategy in [
+        "progressive",
+        "progressive, cell centres",
+        "adaptive",
+        "adaptive, cell centres",
+    ] {
+        match first_below(points, strategy, grid4.flip) {
+            Some(p) => writeln!(
+                md,
+                "| {strategy} | {:.3} s | {:.2} | {:.0}% |",
+                p.seconds,
+                p.samples_per_pixel,
+                p.seconds / grid4.seconds * 100.0
+            )?,
+            None => writeln!(md, "| {strategy} | not reached | | |")?,
+        }
+    }
+
+    writeln!(
+        md,
+        "\n## Cost against resolution (one pass)\n\n| image | time | per pixel |\n|---|---|---|"
+    )?;
+    let sizes: &[(u32, u32)] = if cfg.quick {
+        &[(80, 60), (160, 120)]
+    } else {
+        &[(200, 150), (400, 300), (800, 600), (1600, 1200)]
+    };
+    for &(sw, sh) in sizes {
+        let t = pass_seconds(prepared, scene.camera, sw, sh, runs);
+        writeln!(
+            md,
+            "| {sw}×{sh} | {:.1} ms | {:.0} ns |",
+            t * 1e3,
+            t * 1e9 / (sw * sh) as f64
+        )?;
+    }
+
+    writeln!(
+        md,
+        "\n## Cost against object count (one pass, {w}×{h}, `sphere_field` scenes)\n\n\
+         | spheres | BVH nodes | build | pass | against 10 spheres |\n|---|---|---|---|---|"
+    )?;
+    let counts: &[usize] = if cfg.quick {
+        &[10, 1000]
+    } else {
+        &[10, 100, 1000, 10_000]
+    };
+    let mut base = None;
+    for &n in counts {
+        let field = sphere_field(n);
+        let start = Instant::now();
+        let prepared = Arc::new(PreparedScene::new(&field));
+        let build = start.elapsed().as_secs_f64();
+        let t = pass_seconds(&prepared, field.camera, w, h, runs);
+        let base = *base.get_or_insert(t);
+        writeln!(
+            md,
+            "| {n} | {} | {:.1} ms | {:.1} ms | {:.2}× |",
+            prepared.bvh.nodes.len(),
+            build * 1e3,
+            t * 1e3,
+            t / base
+        )?;
+    }
+    writeln!(
+        md,
+        "\n![Error against time](convergence.svg)\n\nThe curves are in `convergence.csv`."
+    )?;
+    Ok(md)
+}

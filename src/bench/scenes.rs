@@ -1,0 +1,73 @@
+//! Scenes made for measuring: many spheres, for the cost against object count.
+
+use glam::{DVec3, Vec3};
+use prism::camera::Camera;
+use prism::light::PointLight;
+use prism::material::Material;
+use prism::scene::{RenderDefaults, Scene, SceneObject, ShapeDesc};
+use prism::texture::Texture;
+
+/// `n` spheres of radius 1 scattered over a square field above a floor, the field growing
+/// with √n so their density stays the same, seen from above at an angle that keeps the
+/// whole field in view. Deterministic.
+pub fn sphere_field(n: usize) -> Scene {
+    let side = (n as f32).sqrt() * 4.0 + 8.0;
+    let mut state = 0x9e37_79b9u32;
+    let mut next = move || {
+        state ^= state << 13;
+        state ^= state >> 17;
+        state ^= state << 5;
+        state as f32 / u32::MAX as f32
+    };
+    let mut objects: Vec<SceneObject> = (0..n)
+        .map(|i| {
+            let center = Vec3::new(
+                (next() - 0.5) * side,
+                1.0 + next() * 2.0,
+                -(next() * side) - 4.0,
+            );
+            SceneObject {
+                name: format!("sphere {i}"),
+                shape: ShapeDesc::Sphere {
+                    center,
+                    radius: 1.0,
+                },
+                material: Material {
+                    texture: Texture::Solid(Vec3::new(next(), next(), next())),
+                    reflectivity: if i % 5 == 0 { 0.5 } else { 0.0 },
+                    ..Material::default()
+                },
+            }
+        })
+        .collect();
+    let half = side * 0.6;
+    objects.push(SceneObject {
+        name: "floor".into(),
+        shape: ShapeDesc::Polygon {
+            vertices: vec![
+                Vec3::new(-half, 0.0, 2.0),
+                Vec3::new(half, 0.0, 2.0),
+                Vec3::new(half, 0.0, -side - 8.0),
+                Vec3::new(-half, 0.0, -side - 8.0),
+            ],
+        },
+        material: Material {
+            specular: 0.0,
+            ..Material::default()
+        },
+    });
+    let eye = Vec3::new(0.0, side * 0.5, side * 0.25);
+    let target = Vec3::new(0.0, 0.0, -side * 0.5);
+    Scene {
+        origin: DVec3::ZERO,
+        camera: Camera::looking_along(eye, target - eye, 60.0).expect("non-zero"),
+        render: RenderDefaults::default(),
+        background: Vec3::new(0.1, 0.1, 0.15),
+        ambient: Vec3::splat(0.2),
+        lights: vec![PointLight {
+            position: Vec3::new(side, side * 2.0, side * 0.5),
+            color: Vec3::ONE,
+        }],
+        objects,
+    }
+}

@@ -1,0 +1,72 @@
+//! Every shortcut the tracer takes must leave the image as the unoptimised path draws it.
+
+use prism::render::{self, RenderSettings};
+use prism::scene::{PreparedScene, Scene, load_scene};
+use std::sync::Arc;
+
+fn seed() -> Scene {
+    load_scene(&prism::seed_scene_path()).unwrap()
+}
+
+fn image(scene: Arc<PreparedScene>, camera: prism::camera::Camera, s: RenderSettings) -> Vec<u8> {
+    render::render(scene, camera, s, |_, _| {})
+        .accumulator()
+        .to_rgb8()
+        .into_raw()
+}
+
+fn largest_difference(a: &[u8], b: &[u8]) -> u8 {
+    a.iter().zip(b).map(|(x, y)| x.abs_diff(*y)).max().unwrap()
+}
+
+#[test]
+fn skipping_faint_secondary_rays_changes_no_pixel_beyond_rounding() {
+    let scene = seed();
+    let prepared = Arc::new(PreparedScene::new(&scene));
+    let fast = RenderSettings::new(200, 150, 2);
+    let exact = RenderSettings {
+        min_weight: 0.0,
+        ..fast
+    };
+    let d = largest_difference(
+        &image(prepared.clone(), scene.camera, fast),
+        &image(prepared, scene.camera, exact),
+    );
+    assert!(d <= 1, "largest difference {d} levels");
+}
+
+#[test]
+fn opaque_scenes_take_the_any_hit_shadow_shortcut_unchanged() {
+    // Without transparent objects, shadow rays stop at the first occluder without looking
+    // at materials; forcing the general path must give the same image.
+    let mut scene = seed();
+    for o in &mut scene.objects {
+        o.material.transparency = 0.0;
+    }
+    let shortcut = PreparedScene::new(&scene);
+    assert!(!shortcut.any_transmission);
+    let mut general = shortcut.clone();
+    general.any_transmission = true;
+    let s = RenderSettings::new(200, 150, 1);
+    assert_eq!(
+        image(Arc::new(shortcut), scene.camera, s),
+        image(Arc::new(general), scene.camera, s)
+    );
+}
+
+#[test]
+fn the_bvh_answers_as_a_flat_list_would() {
+    // A one-leaf hierarchy (every primitive in the root) is the unoptimised list.
+    let scene = seed();
+    let tree = PreparedScene::new(&scene);
+    let mut flat = tree.clone();
+    flat.bvh.nodes.truncate(1);
+    flat.bvh.nodes[0].first = 0;
+    flat.bvh.nodes[0].count = flat.primitives.len() as u32;
+    assert!(tree.bvh.nodes.len() > 1);
+    let s = RenderSettings::new(200, 150, 1);
+    assert_eq!(
+        image(Arc::new(tree), scene.camera, s),
+        image(Arc::new(flat), scene.camera, s)
+    );
+}
