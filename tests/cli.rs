@@ -313,3 +313,37 @@ fn non_finite_and_extreme_numbers_are_rejected() {
     case.fails_with(GOOD, &["--adaptive", "--tolerance", "nan"], &["tolerance"]);
     case.fails_with(GOOD, &["--adaptive", "--tolerance", "-1"], &["tolerance"]);
 }
+
+#[cfg(feature = "viewer")]
+#[test]
+fn viewer_reports_a_bad_scene_before_opening_a_window() {
+    let case = Case::new();
+    let scene = case.scene(&replace("radius = 1", "radius = -1"));
+    let out = Command::new(env!("CARGO_BIN_EXE_prism"))
+        .args(["view", scene.to_str().unwrap()])
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("scene.toml:19") && stderr.contains("radius"),
+        "{stderr}"
+    );
+}
+
+#[cfg(feature = "viewer")]
+#[test]
+fn viewer_without_a_display_points_to_render() {
+    let out = Command::new(env!("CARGO_BIN_EXE_prism"))
+        .arg("view")
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("prism render"), "{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+}

@@ -17,13 +17,17 @@ use prism::scene::{PreparedScene, load_scene};
 use render_thread::{RenderThread, Request, Status};
 use std::path::PathBuf;
 use std::sync::Arc;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 use winit::application::ApplicationHandler;
 use winit::dpi::{LogicalSize, PhysicalPosition, PhysicalSize};
 use winit::event::{ElementState, MouseButton, MouseScrollDelta, WindowEvent};
 use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop, EventLoopProxy};
 use winit::keyboard::{KeyCode, PhysicalKey};
 use winit::window::{Window, WindowId};
+
+/// While nothing changes, repaints the window system asks for (X11 exposures; under Xvfb
+/// every present causes one) are served at most this often.
+const IDLE_REPAINT: Duration = Duration::from_millis(200);
 
 /// Sent by the render thread when it has published a new image.
 #[derive(Debug, Clone, Copy)]
@@ -72,6 +76,9 @@ pub fn run(args: ViewArgs) -> Result<()> {
         last_frame: Instant::now(),
         shown_serial: 0,
         cursor: None,
+        dirty: true,
+        last_present: Instant::now(),
+        refresh_pending: false,
         modifiers: Default::default(),
         status: Status::default(),
     };
@@ -95,6 +102,11 @@ struct App {
     last_frame: Instant,
     shown_serial: u64,
     cursor: Option<PhysicalPosition<f64>>,
+    /// Something (input, a new image, a resize, egui) changed since the last frame.
+    dirty: bool,
+    last_present: Instant,
+    /// An idle repaint was deferred; the event loop wakes for it at IDLE_REPAINT.
+    refresh_pending: bool,
     modifiers: winit::keyboard::ModifiersState,
     status: Status,
 }
@@ -350,6 +362,7 @@ impl App {
                 .get(&egui::ViewportId::ROOT)
                 .is_some_and(|v| v.repaint_delay.is_zero())
         {
+            self.dirty = true;
             g.window.request_redraw();
         }
         Ok(())
@@ -412,7 +425,20 @@ impl ApplicationHandler<Wake> for App {
         }
     }
 
+    fn new_events(&mut self, _: &ActiveEventLoop, cause: winit::event::StartCause) {
+        if let winit::event::StartCause::ResumeTimeReached { .. } = cause
+            && self.refresh_pending
+        {
+            self.refresh_pending = false;
+            self.dirty = true;
+            if let Some(g) = &self.gfx {
+                g.window.request_redraw();
+            }
+        }
+    }
+
     fn user_event(&mut self, _: &ActiveEventLoop, _: Wake) {
+        self.dirty = true;
         if let Some(g) = &self.gfx {
             g.window.request_redraw();
         }
@@ -420,6 +446,9 @@ impl ApplicationHandler<Wake> for App {
 
     fn window_event(&mut self, event_loop: &ActiveEventLoop, _: WindowId, event: WindowEvent) {
         let Some(g) = &mut self.gfx else { return };
+        if !matches!(event, WindowEvent::RedrawRequested) {
+            self.dirty = true;
+        }
         let response = g.egui_state.on_window_event(&g.window, &event);
         if response.repaint {
             g.window.request_redraw();
@@ -439,9 +468,16 @@ impl ApplicationHandler<Wake> for App {
                 }
             }
             WindowEvent::RedrawRequested => {
+                let idle = !self.dirty && !self.input.moving() && self.status.converged;
+                if idle && self.last_present.elapsed() < IDLE_REPAINT {
+                    self.refresh_pending = true;
+                    return;
+                }
+                self.dirty = false;
                 if let Err(e) = self.redraw() {
                     self.fail(event_loop, e);
                 }
+                self.last_present = Instant::now();
             }
             WindowEvent::Focused(false) => {
                 let was_moving = self.input.moving();
@@ -525,12 +561,18 @@ impl ApplicationHandler<Wake> for App {
         }
     }
 
-    fn about_to_wait(&mut self, _: &ActiveEventLoop) {
+    fn about_to_wait(&mut self, event_loop: &ActiveEventLoop) {
         // Keep drawing while anything changes; sleep once the image has converged.
         if let Some(g) = &self.gfx
             && (self.input.moving() || !self.status.converged)
         {
+            self.dirty = true;
             g.window.request_redraw();
         }
+        event_loop.set_control_flow(if self.refresh_pending {
+            ControlFlow::WaitUntil(self.last_present + IDLE_REPAINT)
+        } else {
+            ControlFlow::Wait
+        });
     }
 }
