@@ -3,8 +3,10 @@
 use crate::geometry::Ray;
 use glam::Vec3;
 
-/// A pinhole camera in the seed's convention: +y is up and yaw = pitch = 0 looks down −z.
-/// Angles are in degrees: positive yaw turns right (towards +x), positive pitch looks up.
+/// A pinhole camera. Angles are in degrees, measured about the `up` direction: pitch is the
+/// elevation above the plane perpendicular to `up`, yaw turns about `up`, positive to the
+/// right. With the seed's up (+y), yaw = pitch = 0 looks down −z and positive yaw turns
+/// towards +x.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Camera {
     pub eye: Vec3,
@@ -12,6 +14,8 @@ pub struct Camera {
     pub pitch: f32,
     /// Vertical field of view.
     pub vfov: f32,
+    /// Unit vector that is up on screen when pitch is 0.
+    pub up: Vec3,
 }
 
 /// Pitch stays short of straight up or down, where yaw would lose its meaning.
@@ -20,28 +24,43 @@ pub const MIN_VFOV: f32 = 0.01;
 pub const MAX_VFOV: f32 = 179.0;
 
 impl Camera {
-    /// A camera at `eye` looking along `direction`; None when `direction` has no length.
+    /// A camera at `eye` looking along `direction` with +y up; None when `direction` has
+    /// no length.
     pub fn looking_along(eye: Vec3, direction: Vec3, vfov: f32) -> Option<Camera> {
+        Self::looking_along_up(eye, direction, Vec3::Y, vfov)
+    }
+
+    /// A camera at `eye` looking along `direction` with `up` up on screen; None when either
+    /// has no length or they are (nearly) parallel.
+    pub fn looking_along_up(eye: Vec3, direction: Vec3, up: Vec3, vfov: f32) -> Option<Camera> {
         let d = crate::numerics::try_normalize(direction)?;
-        let pitch = d.y.clamp(-1.0, 1.0).asin().to_degrees();
-        let yaw = d.x.atan2(-d.z).to_degrees();
+        let up = crate::numerics::try_normalize(up)?;
+        let (reference, side) = reference_frame(up);
+        let pitch = d.dot(up).clamp(-1.0, 1.0).asin().to_degrees();
+        if pitch.abs() > MAX_PITCH {
+            return None;
+        }
+        let yaw = d.dot(side).atan2(d.dot(reference)).to_degrees();
         Some(Camera {
             eye,
             yaw,
-            pitch: pitch.clamp(-MAX_PITCH, MAX_PITCH),
+            pitch,
             vfov,
+            up,
         })
     }
 
     pub fn forward(&self) -> Vec3 {
+        let (reference, side) = reference_frame(self.up);
         let (sy, cy) = self.yaw.to_radians().sin_cos();
         let (sp, cp) = self.pitch.to_radians().sin_cos();
-        Vec3::new(sy * cp, sp, -cy * cp)
+        (reference * cy + side * sy) * cp + self.up * sp
     }
 
     pub fn right(&self) -> Vec3 {
+        let (reference, side) = reference_frame(self.up);
         let (sy, cy) = self.yaw.to_radians().sin_cos();
-        Vec3::new(cy, 0.0, sy)
+        side * cy - reference * sy
     }
 
     /// The precomputed frame for an image of `width` × `height` pixels.
@@ -60,6 +79,18 @@ impl Camera {
             inv_height: 1.0 / height as f32,
         }
     }
+}
+
+/// For unit `up`: the direction yaw 0 looks along (−z made perpendicular to `up`, or −x
+/// when `up` is ±z) and the direction yaw 90° looks along, reference × up.
+fn reference_frame(up: Vec3) -> (Vec3, Vec3) {
+    let candidate = if up.z.abs() < 0.999 {
+        -Vec3::Z
+    } else {
+        -Vec3::X
+    };
+    let reference = (candidate - up * candidate.dot(up)).normalize();
+    (reference, reference.cross(up))
 }
 
 /// Turns image positions into primary rays.
@@ -95,6 +126,7 @@ mod tests {
             yaw: 0.0,
             pitch: 0.0,
             vfov: 90.0,
+            up: Vec3::Y,
         };
         let rays = cam.rays(200, 100);
         let centre = rays.ray(100.0, 50.0);
@@ -113,6 +145,7 @@ mod tests {
             yaw: 0.0,
             pitch: 0.0,
             vfov: 2.0 * (10.0f32 / 40.0).atan().to_degrees(),
+            up: Vec3::Y,
         };
         let top = cam.rays(100, 100).ray(50.0, 0.0).dir;
         assert!((top.y / -top.z - 0.25).abs() < 1e-6);
@@ -138,7 +171,28 @@ mod tests {
             yaw: 90.0,
             pitch: 0.0,
             vfov: 40.0,
+            up: Vec3::Y,
         };
         assert!((cam.forward() - Vec3::X).length() < 1e-6);
+    }
+
+    #[test]
+    fn another_up_rolls_the_image() {
+        // With +x up, looking down −z: the top of the image is towards +x, and its right
+        // towards forward × up = (−z) × x = −y.
+        let cam = Camera::looking_along_up(Vec3::ZERO, -Vec3::Z, Vec3::X, 90.0).unwrap();
+        assert!((cam.forward() - -Vec3::Z).length() < 1e-6);
+        let rays = cam.rays(100, 100);
+        let top = rays.ray(50.0, 0.0).dir;
+        assert!(top.x > 0.7, "the top of the image is towards +x: {top}");
+        let right = rays.ray(100.0, 50.0).dir;
+        assert!(right.y < -0.7, "{right}");
+        for d in [Vec3::new(0.3, 0.4, -0.5), Vec3::new(-1.0, 0.2, 0.1)] {
+            let c =
+                Camera::looking_along_up(Vec3::ZERO, d, Vec3::new(0.0, 1.0, 1.0), 40.0).unwrap();
+            assert!((c.forward() - d.normalize()).length() < 1e-5, "{d}");
+        }
+        assert!(Camera::looking_along_up(Vec3::ZERO, Vec3::Y, Vec3::Y, 40.0).is_none());
+        assert!(Camera::looking_along_up(Vec3::ZERO, -Vec3::Z, Vec3::ZERO, 40.0).is_none());
     }
 }

@@ -347,3 +347,18 @@ fn viewer_without_a_display_points_to_render() {
     assert!(stderr.contains("prism render"), "{stderr}");
     assert!(!stderr.contains("panicked"), "{stderr}");
 }
+
+#[test]
+fn bad_up_vectors_are_rejected() {
+    let case = Case::new();
+    case.fails_with(
+        &replace("fov = 40", "fov = 40\nup = [0, 0, 0]"),
+        &[],
+        &["camera", "`up` has zero length"],
+    );
+    case.fails_with(
+        &replace("fov = 40", "fov = 40\nup = [0, 0, 1]"),
+        &[],
+        &["camera", "choose another `up`"],
+    );
+}

@@ -64,6 +64,9 @@ pub fn check_camera(c: &Camera) -> Result<(), EditError> {
             c.eye
         ));
     }
+    if !c.up.is_finite() || (c.up.length() - 1.0).abs() > 1e-3 {
+        return bad(format!("up {} must be a unit vector", c.up));
+    }
     if !c.yaw.is_finite() {
         return bad(format!("yaw {} must be a finite number", c.yaw));
     }

@@ -50,6 +50,7 @@ struct CameraDef {
     direction: Option<V3>,
     yaw: Option<f32>,
     pitch: Option<f32>,
+    up: Option<V3>,
     fov: f32,
 }
 
@@ -469,6 +470,9 @@ impl Validator<'_> {
                 "give only one of `look_at`, `direction`, or `yaw`/`pitch`",
             ));
         }
+        let up = self.point(&at, "up", c.up.unwrap_or([0.0, 1.0, 0.0]))?;
+        let up = crate::numerics::try_normalize(up)
+            .ok_or_else(|| self.field_error(&at, "up", "`up` has zero length"))?;
         let direction = if let Some(target) = c.look_at {
             let target = self.position(&at, "look_at", target)?;
             if target == eye {
@@ -485,12 +489,21 @@ impl Validator<'_> {
                 yaw,
                 pitch,
                 vfov,
+                up,
             });
         };
-        Camera::looking_along(eye, direction, vfov).ok_or_else(|| {
-            self.error(
+        if crate::numerics::try_normalize(direction).is_none() {
+            return Err(self.error(
                 &at,
                 format!("the view direction {direction} has zero length"),
+            ));
+        }
+        Camera::looking_along_up(eye, direction, up, vfov).ok_or_else(|| {
+            self.error(
+                &at,
+                format!(
+                    "the view direction {direction} is within 1° of `up` {up}: choose another `up`"
+                ),
             )
         })
     }

@@ -64,7 +64,7 @@ impl CameraInput {
             return false;
         }
         let step = self.speed * dt;
-        camera.eye += (camera.forward() * f + camera.right() * r + glam::Vec3::Y * u) * step;
+        camera.eye += (camera.forward() * f + camera.right() * r + camera.up * u) * step;
         true
     }
 
@@ -91,6 +91,7 @@ mod tests {
             yaw: 0.0,
             pitch: 0.0,
             vfov: 30.0,
+            up: Vec3::Y,
         }
     }
 
