@@ -7,6 +7,7 @@ use glam::{DVec3, Vec3};
 use prism::geometry::{Cylinder, Ray, RayQuery, Sphere, Triangle};
 use prism::integrator::{Integrator, SelfIntersection};
 use prism::material::Material;
+use prism::render::compare::fraction_differing as differing;
 use prism::render::{self, RenderSettings};
 use prism::scene::{PreparedScene, Scene, SceneObject, ShapeDesc, load_scene};
 use proptest::prelude::*;
@@ -34,16 +35,6 @@ fn render_with(scene: &Scene, policy: SelfIntersection) -> image::RgbImage {
 
 fn render_image(scene: &Scene) -> image::RgbImage {
     render_with(scene, SelfIntersection::ErrorBound)
-}
-
-/// Fraction of pixels that differ by more than `levels` in some channel.
-fn differing(a: &image::RgbImage, b: &image::RgbImage, levels: u8) -> f64 {
-    let n = a
-        .pixels()
-        .zip(b.pixels())
-        .filter(|(p, q)| (0..3).any(|c| p[c].abs_diff(q[c]) > levels))
-        .count();
-    n as f64 / (a.width() * a.height()) as f64
 }
 
 #[test]

@@ -5,6 +5,7 @@
 //! Needs xvfb-run, xdotool and ImageMagick (`.ci/run` installs them). Without them the test
 //! says so and passes, unless PRISM_REQUIRE_WINDOW_TEST is set, as it is in CI.
 
+use prism::render::compare::fraction_differing as differing;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -23,17 +24,6 @@ fn shots(dir: &Path) -> Vec<PathBuf> {
         .collect();
     v.sort();
     v
-}
-
-/// Fraction of pixels that differ by more than `tolerance` in any channel.
-fn differing(a: &image::RgbImage, b: &image::RgbImage, tolerance: u8) -> f64 {
-    assert_eq!(a.dimensions(), b.dimensions());
-    let n = a
-        .pixels()
-        .zip(b.pixels())
-        .filter(|(p, q)| (0..3).any(|c| p[c].abs_diff(q[c]) > tolerance))
-        .count();
-    n as f64 / (a.width() * a.height()) as f64
 }
 
 #[cfg(feature = "viewer")]

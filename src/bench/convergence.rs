@@ -102,42 +102,36 @@ pub fn run(cfg: Config) -> Result<()> {
         s.adaptive = adaptive;
         s
     };
-    measure(
-        "seed 2×2 grid",
-        settings(2, SampleLayout::Grid, None),
-        false,
-    );
-    for n in [1, 2, 3, 4, 6, 8] {
-        measure(
-            "fixed N×N grid",
-            settings(n, SampleLayout::Grid, None),
-            false,
-        );
-    }
-    measure(
-        "progressive",
-        settings(8, SampleLayout::Stratified, None),
-        true,
-    );
-    measure(
-        "progressive, cell centres",
-        settings(8, SampleLayout::Grid, None),
-        true,
-    );
     let adaptive = Some(AdaptiveSettings {
         tolerance: cfg.tolerance,
         min_samples: cfg.min_samples,
     });
-    measure(
-        "adaptive",
-        settings(8, SampleLayout::Stratified, adaptive),
-        true,
-    );
-    measure(
-        "adaptive, cell centres",
-        settings(8, SampleLayout::Grid, adaptive),
-        true,
-    );
+    // (name, N, layout, adaptive, measured after every pass rather than once finished)
+    let mut strategies = vec![("seed 2×2 grid", 2, SampleLayout::Grid, None, false)];
+    for n in [1, 2, 3, 4, 6, 8] {
+        strategies.push(("fixed N×N grid", n, SampleLayout::Grid, None, false));
+    }
+    strategies.extend([
+        ("progressive", 8, SampleLayout::Stratified, None, true),
+        (
+            "progressive, cell centres",
+            8,
+            SampleLayout::Grid,
+            None,
+            true,
+        ),
+        ("adaptive", 8, SampleLayout::Stratified, adaptive, true),
+        (
+            "adaptive, cell centres",
+            8,
+            SampleLayout::Grid,
+            adaptive,
+            true,
+        ),
+    ]);
+    for (name, n, layout, adaptive, every_pass) in strategies {
+        measure(name, settings(n, layout, adaptive), every_pass);
+    }
 
     write_csv(&cfg.out_dir.join("convergence.csv"), &points)?;
     plot(&cfg.out_dir.join("convergence.svg"), &points)?;

@@ -3,6 +3,7 @@
 //! so a one-shot render equals a finished progressive one by construction.
 
 pub mod accumulator;
+pub mod compare;
 pub mod output;
 pub mod pass;
 pub mod progressive;
