@@ -314,17 +314,23 @@ fn non_finite_and_extreme_numbers_are_rejected() {
     case.fails_with(GOOD, &["--adaptive", "--tolerance", "-1"], &["tolerance"]);
 }
 
+/// `prism ARGS` with no display to open a window on.
+#[cfg(feature = "viewer")]
+fn prism_without_display(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_prism"))
+        .args(args)
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .unwrap()
+}
+
 #[cfg(feature = "viewer")]
 #[test]
 fn viewer_reports_a_bad_scene_before_opening_a_window() {
     let case = Case::new();
     let scene = case.scene(&replace("radius = 1", "radius = -1"));
-    let out = Command::new(env!("CARGO_BIN_EXE_prism"))
-        .args(["view", scene.to_str().unwrap()])
-        .env_remove("DISPLAY")
-        .env_remove("WAYLAND_DISPLAY")
-        .output()
-        .unwrap();
+    let out = prism_without_display(&["view", scene.to_str().unwrap()]);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{stderr}");
     assert!(
@@ -336,12 +342,7 @@ fn viewer_reports_a_bad_scene_before_opening_a_window() {
 #[cfg(feature = "viewer")]
 #[test]
 fn viewer_without_a_display_points_to_render() {
-    let out = Command::new(env!("CARGO_BIN_EXE_prism"))
-        .arg("view")
-        .env_remove("DISPLAY")
-        .env_remove("WAYLAND_DISPLAY")
-        .output()
-        .unwrap();
+    let out = prism_without_display(&["view"]);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(1), "{stderr}");
     assert!(stderr.contains("prism render"), "{stderr}");

@@ -2,7 +2,7 @@
 
 use anyhow::{Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
-use prism::render::{AdaptiveSettings, PendingPng, RenderSettings};
+use prism::render::{AdaptiveSettings, PendingFile, RenderSettings};
 use prism::sampler::SampleLayout;
 use prism::scene::{PreparedScene, load_scene};
 use std::path::PathBuf;
@@ -83,7 +83,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
         anyhow::bail!("--threads 0: at least one thread is needed");
     }
     // Claim the output file first: an unwritable path fails now, not after the render.
-    let pending = PendingPng::create(&args.out)?;
+    let pending = PendingFile::create(&args.out)?;
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(args.threads.unwrap_or(0))
         .build()
@@ -113,7 +113,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
     });
     bar.finish_and_clear();
     let wall = start.elapsed().as_secs_f64();
-    let path = pending.finish(&job.accumulator().to_rgb8())?;
+    let path = pending.finish_png(&job.accumulator().to_rgb8())?;
     let rays = job.rays_traced();
     eprintln!(
         "rendered {} ({}×{}, {} threads) in {:.3} s: {:.2} samples per pixel, {} passes, \

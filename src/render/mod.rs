@@ -10,7 +10,7 @@ pub mod progressive;
 pub mod settings;
 
 pub use accumulator::Accumulator;
-pub use output::{OutputError, PendingPng};
+pub use output::{OutputError, PendingFile};
 pub use pass::{PassStats, render_pass};
 pub use progressive::{PassOutcome, ProgressiveRender};
 pub use settings::{AdaptiveSettings, RenderSettings, SettingsError};

@@ -1,5 +1,6 @@
-//! Writing PNGs so that a failed or interrupted write never leaves a broken file: the image
-//! goes to a temporary file beside the target, which is renamed over it only when complete.
+//! Writing files (PNGs, the bench's CSV and caches) so that a failed or interrupted write
+//! never leaves a broken file: the data goes to a temporary file beside the target, which is
+//! renamed over it only when complete.
 
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
@@ -12,18 +13,18 @@ pub enum OutputError {
         path: PathBuf,
         source: std::io::Error,
     },
-    #[error("{}: failed while writing the PNG: {reason}", path.display())]
+    #[error("{}: failed while writing: {reason}", path.display())]
     Write { path: PathBuf, reason: String },
 }
 
-/// A PNG about to be written: created (and so checked for writability) before the render
+/// A file about to be written: created (and so checked for writability) before the render
 /// starts, so a bad path fails at once rather than after the work is done.
-pub struct PendingPng {
+pub struct PendingFile {
     path: PathBuf,
     temp: tempfile::NamedTempFile,
 }
 
-impl PendingPng {
+impl PendingFile {
     pub fn create(path: &Path) -> Result<Self, OutputError> {
         let dir = match path.parent() {
             Some(p) if !p.as_os_str().is_empty() => p,
@@ -63,20 +64,33 @@ impl PendingPng {
         &self.path
     }
 
-    /// Encodes `image`, then renames the finished file into place.
-    pub fn finish(self, image: &image::RgbImage) -> Result<PathBuf, OutputError> {
+    /// Encodes `image` as PNG, then renames the finished file into place.
+    pub fn finish_png(self, image: &image::RgbImage) -> Result<PathBuf, OutputError> {
+        self.commit(|file| {
+            let mut writer = BufWriter::new(file);
+            image
+                .write_to(&mut writer, image::ImageFormat::Png)
+                .map_err(|e| e.to_string())?;
+            writer.flush().map_err(|e| e.to_string())
+        })
+    }
+
+    /// Writes `bytes`, then renames the finished file into place.
+    pub fn finish_bytes(self, bytes: &[u8]) -> Result<PathBuf, OutputError> {
+        self.commit(|mut file| file.write_all(bytes).map_err(|e| e.to_string()))
+    }
+
+    /// Fills the temporary file, makes it durable, and renames it over the target.
+    fn commit(
+        self,
+        fill: impl FnOnce(&std::fs::File) -> Result<(), String>,
+    ) -> Result<PathBuf, OutputError> {
         let path = self.path;
         let fail = |reason: String| OutputError::Write {
             path: path.clone(),
             reason,
         };
-        {
-            let mut writer = BufWriter::new(self.temp.as_file());
-            image
-                .write_to(&mut writer, image::ImageFormat::Png)
-                .map_err(|e| fail(e.to_string()))?;
-            writer.flush().map_err(|e| fail(e.to_string()))?;
-        }
+        fill(self.temp.as_file()).map_err(fail)?;
         self.temp
             .as_file()
             .sync_all()
@@ -88,23 +102,14 @@ impl PendingPng {
     }
 }
 
-/// Writes `bytes` to `path` atomically (the same temporary-file-and-rename as PNGs).
-pub fn write_bytes(path: &Path, bytes: &[u8]) -> Result<PathBuf, OutputError> {
-    let pending = PendingPng::create(path)?;
-    let fail = |e: std::io::Error| OutputError::Write {
-        path: path.to_path_buf(),
-        reason: e.to_string(),
-    };
-    let mut file = pending.temp.as_file();
-    file.write_all(bytes).map_err(fail)?;
-    file.sync_all().map_err(fail)?;
-    pending.temp.persist(path).map_err(|e| fail(e.error))?;
-    Ok(path.to_path_buf())
+/// Writes `image` to `path` as a PNG, atomically.
+pub fn write_png(path: &Path, image: &image::RgbImage) -> Result<PathBuf, OutputError> {
+    PendingFile::create(path)?.finish_png(image)
 }
 
-/// Writes `image` to `path` atomically.
-pub fn write_png(path: &Path, image: &image::RgbImage) -> Result<PathBuf, OutputError> {
-    PendingPng::create(path)?.finish(image)
+/// Writes `bytes` to `path`, atomically.
+pub fn write_bytes(path: &Path, bytes: &[u8]) -> Result<PathBuf, OutputError> {
+    PendingFile::create(path)?.finish_bytes(bytes)
 }
 
 #[cfg(test)]
@@ -133,16 +138,25 @@ mod tests {
     fn unwritable_paths_fail_before_rendering() {
         let dir = tempfile::tempdir().unwrap();
         let missing = dir.path().join("no/such/dir/out.png");
-        let e = PendingPng::create(&missing).err().unwrap();
+        let e = PendingFile::create(&missing).err().unwrap();
         assert!(e.to_string().contains("no/such/dir/out.png"), "{e}");
-        assert!(PendingPng::create(dir.path()).is_err());
+        assert!(PendingFile::create(dir.path()).is_err());
+    }
+
+    #[test]
+    fn bytes_are_written_whole() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("data.csv");
+        write_bytes(&path, b"a,b\n1,2\n").unwrap();
+        assert_eq!(std::fs::read(&path).unwrap(), b"a,b\n1,2\n");
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
     }
 
     #[test]
     fn abandoned_write_leaves_nothing() {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("out.png");
-        drop(PendingPng::create(&path).unwrap());
+        drop(PendingFile::create(&path).unwrap());
         assert!(!path.exists());
         assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
     }

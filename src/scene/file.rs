@@ -423,7 +423,7 @@ impl Validator<'_> {
             let d = t.get_ref();
             add("tetrahedra", i, t.span(), &d.name, &d.material, &|at| {
                 let v = self.vertices(at, &d.vertices)?;
-                let extent = Aabb3::of(&v);
+                let extent = extent(&v);
                 let volume6 = (v[1] - v[0]).cross(v[2] - v[0]).dot(v[3] - v[0]).abs();
                 if volume6.is_nan() || volume6 <= 1e-5 * extent.powi(3) {
                     return Err(self.error(at, "the four vertices lie in one plane (no volume)"));
@@ -699,13 +699,10 @@ impl Validator<'_> {
 /// The largest image side the renderer accepts.
 pub const MAX_IMAGE_SIDE: i64 = 16384;
 
-struct Aabb3;
-impl Aabb3 {
-    /// The largest extent of a point set along any axis.
-    fn of(v: &[Vec3]) -> f32 {
-        let b = crate::geometry::Aabb::from_points(v);
-        (b.max - b.min).max_element()
-    }
+/// The largest extent of a point set along any axis.
+fn extent(v: &[Vec3]) -> f32 {
+    let b = crate::geometry::Aabb::from_points(v);
+    (b.max - b.min).max_element()
 }
 
 /// Why these corners do not make a planar convex polygon, if they do not.
@@ -716,7 +713,7 @@ pub fn check_polygon(v: &[Vec3]) -> Result<(), String> {
             v.len()
         ));
     }
-    let extent = Aabb3::of(v);
+    let extent = extent(v);
     let n = v.len();
     for i in 0..n {
         let j = (i + 1) % n;

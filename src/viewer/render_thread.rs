@@ -159,14 +159,12 @@ impl Worker {
             }
             match self.job.step(&cancelled) {
                 PassOutcome::Finished(stats) => {
-                    self.publish(stats.seconds, false);
+                    self.publish(stats.seconds);
                     waiting = false;
                 }
                 PassOutcome::Cancelled => waiting = false,
-                PassOutcome::Converged => {
-                    self.publish(0.0, false);
-                    waiting = true;
-                }
+                // The last finished pass already published the converged image.
+                PassOutcome::Converged => waiting = true,
             }
         }
     }
@@ -219,7 +217,7 @@ impl Worker {
         self.store(rgba, full.width, full.height, status);
     }
 
-    fn publish(&mut self, pass_seconds: f64, preview: bool) {
+    fn publish(&mut self, pass_seconds: f64) {
         let s = self.job.settings();
         let (width, height) = (s.width, s.height);
         let mut rgba = vec![0u8; (width * height * 4) as usize];
@@ -240,7 +238,7 @@ impl Worker {
                 self.job.active_pixels()
             },
             total_pixels: (width * height) as usize,
-            preview,
+            preview: false,
         };
         self.store(rgba, width, height, status);
     }
@@ -248,21 +246,6 @@ impl Worker {
     fn store(&self, rgba: Vec<u8>, width: u32, height: u32, status: Status) {
         {
             let mut p = self.published.lock().unwrap_or_else(|e| e.into_inner());
-            // A converged job publishes once more only to update the status; keep its
-            // ms-per-pass figure from the last real pass.
-            let status = if status.ms_per_pass == 0.0 && status.converged {
-                Status {
-                    ms_per_pass: p.status.ms_per_pass,
-                    seconds: if p.status.converged {
-                        p.status.seconds
-                    } else {
-                        status.seconds
-                    },
-                    ..status
-                }
-            } else {
-                status
-            };
             p.rgba = rgba;
             p.width = width;
             p.height = height;
