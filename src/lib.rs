@@ -13,6 +13,7 @@ pub mod numerics;
 pub mod render;
 pub mod sampler;
 pub mod scene;
+pub mod simd;
 pub mod texture;
 
 /// The seed scene, shipped with the crate.

@@ -2,6 +2,7 @@
 
 pub mod aabb;
 pub mod bvh;
+pub mod bvh_build;
 pub mod cylinder;
 pub mod ray;
 pub mod shape;

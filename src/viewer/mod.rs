@@ -61,7 +61,7 @@ pub fn run(args: ViewArgs) -> Result<()> {
     event_loop.set_control_flow(ControlFlow::Wait);
     let speed = {
         let prepared = PreparedScene::new(&scene);
-        let b = prepared.bvh.nodes.first().map(|n| n.bounds);
+        let b = prepared.bvh.bounds;
         b.map_or(10.0, |b| ((b.max - b.min).length() * 0.25).max(1e-3))
     };
     probe.width = probe.width.max(1);

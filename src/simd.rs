@@ -1,0 +1,210 @@
+//! Four f32 lanes for the wide BVH's box test: SSE2 on x86-64 (part of the baseline, so no
+//! runtime detection and no `target-cpu` flag), plain arrays elsewhere with the same results.
+//!
+//! `max_or`/`min_or` fix what happens to NaN, which the slab test relies on: a NaN in `self`
+//! yields `other`. SSE2's `maxps`/`minps` do exactly that; glam's `Vec4::max` leaves it to the
+//! platform (NEON propagates NaN), hence this small type.
+
+// SAFETY (every `unsafe` below): these SSE/SSE2 intrinsics only require their target
+// feature, which every x86-64 processor has.
+#[cfg(target_arch = "x86_64")]
+mod lanes {
+    use std::arch::x86_64::*;
+
+    #[derive(Clone, Copy, Debug)]
+    #[repr(transparent)]
+    pub struct F32x4(__m128);
+
+    impl F32x4 {
+        pub const INFINITY: Self = Self::from_array([f32::INFINITY; 4]);
+        pub const NEG_INFINITY: Self = Self::from_array([f32::NEG_INFINITY; 4]);
+
+        #[inline(always)]
+        pub fn splat(v: f32) -> Self {
+            Self(unsafe { _mm_set1_ps(v) })
+        }
+
+        #[inline(always)]
+        pub const fn from_array(a: [f32; 4]) -> Self {
+            // SAFETY: __m128 is four f32 lanes, lane 0 first in memory.
+            Self(unsafe { std::mem::transmute::<[f32; 4], __m128>(a) })
+        }
+
+        #[inline(always)]
+        pub fn to_array(self) -> [f32; 4] {
+            let mut out = [0.0; 4];
+            // SAFETY: `out` is 16 writable bytes; the unaligned store has no other demand.
+            unsafe { _mm_storeu_ps(out.as_mut_ptr(), self.0) };
+            out
+        }
+
+        #[inline(always)]
+        pub fn sub(self, o: Self) -> Self {
+            Self(unsafe { _mm_sub_ps(self.0, o.0) })
+        }
+
+        #[inline(always)]
+        pub fn mul(self, o: Self) -> Self {
+            Self(unsafe { _mm_mul_ps(self.0, o.0) })
+        }
+
+        /// Per lane `if self > other { self } else { other }`.
+        #[inline(always)]
+        pub fn max_or(self, other: Self) -> Self {
+            Self(unsafe { _mm_max_ps(self.0, other.0) })
+        }
+
+        /// Per lane `if self < other { self } else { other }`.
+        #[inline(always)]
+        pub fn min_or(self, other: Self) -> Self {
+            Self(unsafe { _mm_min_ps(self.0, other.0) })
+        }
+
+        /// Bit i set where lane i of `self` ≤ lane i of `other`.
+        #[inline(always)]
+        pub fn le_mask(self, other: Self) -> u32 {
+            unsafe { _mm_movemask_ps(_mm_cmple_ps(self.0, other.0)) as u32 }
+        }
+    }
+}
+
+#[cfg(not(target_arch = "x86_64"))]
+mod lanes {
+    pub use super::portable::F32x4;
+}
+
+pub use lanes::F32x4;
+
+/// The plain-array lanes: used where SSE2 is not available, and compiled everywhere so the
+/// tests can check that both give the same answers.
+#[cfg_attr(target_arch = "x86_64", allow(dead_code))]
+mod portable {
+    #[derive(Clone, Copy, Debug)]
+    pub struct F32x4([f32; 4]);
+
+    impl F32x4 {
+        pub const INFINITY: Self = Self([f32::INFINITY; 4]);
+        pub const NEG_INFINITY: Self = Self([f32::NEG_INFINITY; 4]);
+
+        #[inline(always)]
+        pub fn splat(v: f32) -> Self {
+            Self([v; 4])
+        }
+
+        #[inline(always)]
+        pub const fn from_array(a: [f32; 4]) -> Self {
+            Self(a)
+        }
+
+        #[inline(always)]
+        pub fn to_array(self) -> [f32; 4] {
+            self.0
+        }
+
+        #[inline(always)]
+        fn zip(self, o: Self, f: impl Fn(f32, f32) -> f32) -> Self {
+            Self(std::array::from_fn(|i| f(self.0[i], o.0[i])))
+        }
+
+        #[inline(always)]
+        pub fn sub(self, o: Self) -> Self {
+            self.zip(o, |a, b| a - b)
+        }
+
+        #[inline(always)]
+        pub fn mul(self, o: Self) -> Self {
+            self.zip(o, |a, b| a * b)
+        }
+
+        #[inline(always)]
+        pub fn max_or(self, other: Self) -> Self {
+            self.zip(other, |a, b| if a > b { a } else { b })
+        }
+
+        #[inline(always)]
+        pub fn min_or(self, other: Self) -> Self {
+            self.zip(other, |a, b| if a < b { a } else { b })
+        }
+
+        #[inline(always)]
+        pub fn le_mask(self, other: Self) -> u32 {
+            (0..4).fold(0, |m, i| m | (((self.0[i] <= other.0[i]) as u32) << i))
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{F32x4, portable};
+
+    const SPECIAL: [f32; 8] = [
+        0.0,
+        -0.0,
+        1.5,
+        -2.25,
+        f32::INFINITY,
+        f32::NEG_INFINITY,
+        f32::NAN,
+        f32::MIN_POSITIVE,
+    ];
+
+    fn same(a: [f32; 4], b: [f32; 4]) -> bool {
+        a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())
+    }
+
+    /// Every operation gives bit-identical lanes in both implementations, NaN and signed
+    /// zeros included.
+    #[test]
+    fn native_and_portable_lanes_agree() {
+        for i in 0..SPECIAL.len() {
+            for j in 0..SPECIAL.len() {
+                let a = [
+                    SPECIAL[i],
+                    SPECIAL[j],
+                    SPECIAL[(i + j) % 8],
+                    SPECIAL[(i * 3 + j) % 8],
+                ];
+                let b = [
+                    SPECIAL[j],
+                    SPECIAL[i],
+                    SPECIAL[(i + 5) % 8],
+                    SPECIAL[(j + 3) % 8],
+                ];
+                let (na, nb) = (F32x4::from_array(a), F32x4::from_array(b));
+                let (pa, pb) = (
+                    portable::F32x4::from_array(a),
+                    portable::F32x4::from_array(b),
+                );
+                assert!(same(na.max_or(nb).to_array(), pa.max_or(pb).to_array()));
+                assert!(same(na.min_or(nb).to_array(), pa.min_or(pb).to_array()));
+                assert_eq!(na.le_mask(nb), pa.le_mask(pb));
+                let diff = na.sub(nb).to_array();
+                let prod = na.mul(nb).to_array();
+                let (pdiff, pprod) = (pa.sub(pb).to_array(), pa.mul(pb).to_array());
+                for k in 0..4 {
+                    // NaN payloads may differ; NaN-ness may not.
+                    assert_eq!(diff[k].is_nan(), pdiff[k].is_nan());
+                    assert_eq!(prod[k].is_nan(), pprod[k].is_nan());
+                    if !diff[k].is_nan() {
+                        assert_eq!(diff[k].to_bits(), pdiff[k].to_bits());
+                    }
+                    if !prod[k].is_nan() {
+                        assert_eq!(prod[k].to_bits(), pprod[k].to_bits());
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn nan_in_self_yields_other() {
+        let nan = F32x4::splat(f32::NAN);
+        let one = F32x4::splat(1.0);
+        assert_eq!(nan.max_or(one).to_array(), [1.0; 4]);
+        assert_eq!(nan.min_or(one).to_array(), [1.0; 4]);
+        assert_eq!(
+            F32x4::from_array([1.0, 3.0, 2.0, 0.0]).le_mask(F32x4::splat(2.0)),
+            0b1101
+        );
+    }
+}
