@@ -38,16 +38,6 @@ mod lanes {
             out
         }
 
-        #[inline(always)]
-        pub fn sub(self, o: Self) -> Self {
-            Self(unsafe { _mm_sub_ps(self.0, o.0) })
-        }
-
-        #[inline(always)]
-        pub fn mul(self, o: Self) -> Self {
-            Self(unsafe { _mm_mul_ps(self.0, o.0) })
-        }
-
         /// Per lane `if self > other { self } else { other }`.
         #[inline(always)]
         pub fn max_or(self, other: Self) -> Self {
@@ -64,6 +54,22 @@ mod lanes {
         #[inline(always)]
         pub fn le_mask(self, other: Self) -> u32 {
             unsafe { _mm_movemask_ps(_mm_cmple_ps(self.0, other.0)) as u32 }
+        }
+    }
+
+    impl std::ops::Sub for F32x4 {
+        type Output = Self;
+        #[inline(always)]
+        fn sub(self, o: Self) -> Self {
+            Self(unsafe { _mm_sub_ps(self.0, o.0) })
+        }
+    }
+
+    impl std::ops::Mul for F32x4 {
+        type Output = Self;
+        #[inline(always)]
+        fn mul(self, o: Self) -> Self {
+            Self(unsafe { _mm_mul_ps(self.0, o.0) })
         }
     }
 }
@@ -107,16 +113,6 @@ mod portable {
         }
 
         #[inline(always)]
-        pub fn sub(self, o: Self) -> Self {
-            self.zip(o, |a, b| a - b)
-        }
-
-        #[inline(always)]
-        pub fn mul(self, o: Self) -> Self {
-            self.zip(o, |a, b| a * b)
-        }
-
-        #[inline(always)]
         pub fn max_or(self, other: Self) -> Self {
             self.zip(other, |a, b| if a > b { a } else { b })
         }
@@ -129,6 +125,22 @@ mod portable {
         #[inline(always)]
         pub fn le_mask(self, other: Self) -> u32 {
             (0..4).fold(0, |m, i| m | (((self.0[i] <= other.0[i]) as u32) << i))
+        }
+    }
+
+    impl std::ops::Sub for F32x4 {
+        type Output = Self;
+        #[inline(always)]
+        fn sub(self, o: Self) -> Self {
+            self.zip(o, |a, b| a - b)
+        }
+    }
+
+    impl std::ops::Mul for F32x4 {
+        type Output = Self;
+        #[inline(always)]
+        fn mul(self, o: Self) -> Self {
+            self.zip(o, |a, b| a * b)
         }
     }
 }
@@ -178,9 +190,9 @@ mod tests {
                 assert!(same(na.max_or(nb).to_array(), pa.max_or(pb).to_array()));
                 assert!(same(na.min_or(nb).to_array(), pa.min_or(pb).to_array()));
                 assert_eq!(na.le_mask(nb), pa.le_mask(pb));
-                let diff = na.sub(nb).to_array();
-                let prod = na.mul(nb).to_array();
-                let (pdiff, pprod) = (pa.sub(pb).to_array(), pa.mul(pb).to_array());
+                let diff = (na - nb).to_array();
+                let prod = (na * nb).to_array();
+                let (pdiff, pprod) = ((pa - pb).to_array(), (pa * pb).to_array());
                 for k in 0..4 {
                     // NaN payloads may differ; NaN-ness may not.
                     assert_eq!(diff[k].is_nan(), pdiff[k].is_nan());

@@ -92,8 +92,8 @@ impl WideNode {
             } else {
                 (self.lo[axis], self.hi[axis])
             };
-            let t_near = near.sub(ray.origin[axis]).mul(ray.inv_dir[axis]);
-            let t_far = far.sub(ray.origin[axis]).mul(ray.inv_dir_far[axis]);
+            let t_near = (near - ray.origin[axis]) * ray.inv_dir[axis];
+            let t_far = (far - ray.origin[axis]) * ray.inv_dir_far[axis];
             t_enter = t_near.max_or(t_enter);
             t_exit = t_far.min_or(t_exit);
         }
