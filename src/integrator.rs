@@ -152,7 +152,10 @@ impl<'a> Integrator<'a> {
                 if material.specular > 0.0 {
                     let r = reflect(-l, n);
                     let r_dot_v = r.dot(-ray.dir).max(0.0);
-                    specular += lit * (material.specular * r_dot_v.powf(material.shininess));
+                    // Outside the highlight the power is 0 (unless the exponent is 0 too).
+                    if r_dot_v > 0.0 || material.shininess == 0.0 {
+                        specular += lit * (material.specular * r_dot_v.powf(material.shininess));
+                    }
                 }
             }
             // The highlight is light reflected at the surface: it does not fade with opacity.

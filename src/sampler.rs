@@ -57,7 +57,12 @@ impl Sampler {
         let n = self.n;
         let shift = hash(x.wrapping_mul(0x9e37_79b1) ^ hash(y ^ 0x5bd1_e995));
         let (cx, cy) = self.order[k as usize];
-        let (cx, cy) = ((cx + shift % n) % n, (cy + (shift >> 16) % n) % n);
+        // The rotation per axis: 16 hash bits mapped onto 0..n by a multiply and a shift
+        // (Lemire's reduction); `shift % n` costs an integer division, as much as the rest
+        // of this function.
+        let (sx, sy) = (((shift & 0xffff) * n) >> 16, ((shift >> 16) * n) >> 16);
+        let wrap = |c: u32| if c >= n { c - n } else { c };
+        let (cx, cy) = (wrap(cx + sx), wrap(cy + sy));
         let inv = 1.0 / n as f32;
         let (jx, jy) = match self.layout {
             SampleLayout::Grid => (0.5, 0.5),

@@ -41,16 +41,18 @@ impl ImageTexture {
     /// Bilinear lookup at (u, v), u wrapping around (longitude), v clamped (latitude);
     /// texel (i, j) has its centre at ((i + ½) / width, (j + ½) / height).
     pub fn sample(&self, u: f32, v: f32) -> Vec3 {
-        let x = u.rem_euclid(1.0) * self.width as f32 - 0.5;
+        let x = (u - floor_to_int(u) as f32) * self.width as f32 - 0.5;
         let y = v.clamp(0.0, 1.0) * self.height as f32 - 0.5;
-        let (x0f, y0f) = (x.floor(), y.floor());
-        let (fx, fy) = (x - x0f, y - y0f);
+        let (x0, y0) = (floor_to_int(x), floor_to_int(y));
+        let (fx, fy) = (x - x0 as f32, y - y0 as f32);
         let w = self.width as i64;
         let h = self.height as i64;
-        let x0 = (x0f as i64).rem_euclid(w) as u32;
-        let x1 = ((x0f as i64) + 1).rem_euclid(w) as u32;
-        let y0 = (y0f as i64).clamp(0, h - 1) as u32;
-        let y1 = ((y0f as i64) + 1).clamp(0, h - 1) as u32;
+        // x lies in [−½, width − ½): one step of wrapping at most.
+        let x0 = if x0 < 0 { x0 + w } else { x0 };
+        let x1 = if x0 + 1 >= w { 0 } else { x0 + 1 } as u32;
+        let x0 = x0 as u32;
+        let y1 = (y0 + 1).clamp(0, h - 1) as u32;
+        let y0 = y0.clamp(0, h - 1) as u32;
         let top = self.texel(x0, y0).lerp(self.texel(x1, y0), fx);
         let bottom = self.texel(x0, y1).lerp(self.texel(x1, y1), fx);
         top.lerp(bottom, fy)
@@ -63,6 +65,15 @@ impl ImageTexture {
         });
         sum / (255.0 * self.texels.len().max(1) as f32)
     }
+}
+
+/// ⌊x⌋ as an integer, without a call into libm (`f32::floor` is one on the x86-64
+/// baseline, which lacks SSE4.1's `roundss`). Exact for every finite x whose floor fits in
+/// an i64; beyond that the pattern has no meaning left anyway (NaN gives 0).
+#[inline]
+fn floor_to_int(x: f32) -> i64 {
+    let truncated = x as i64;
+    truncated.saturating_sub(((truncated as f32) > x) as i64)
 }
 
 /// What colours a surface. Procedural patterns are evaluated on the point relative to the
@@ -93,17 +104,17 @@ impl Texture {
         match self {
             Texture::Solid(c) => *c,
             Texture::Checker { colors, size, axes } => {
-                let cell = (local * *axes / *size).floor();
-                let parity = (cell.x + cell.y + cell.z).rem_euclid(2.0);
-                colors[(parity >= 1.0) as usize]
+                let cell = local * *axes / *size;
+                let sum = floor_to_int(cell.x) + floor_to_int(cell.y) + floor_to_int(cell.z);
+                colors[(sum & 1) as usize]
             }
             Texture::Stripes {
                 colors,
                 width,
                 direction,
             } => {
-                let band = (local.dot(*direction) / *width).floor();
-                colors[(band.rem_euclid(2.0) >= 1.0) as usize]
+                let band = floor_to_int(local.dot(*direction) / *width);
+                colors[(band & 1) as usize]
             }
             Texture::Image(img) => img.sample(uv.0, uv.1),
         }
@@ -191,6 +202,31 @@ mod tests {
         assert_eq!(c.eval((0.0, 0.0), Vec3::new(-1.0, 0.0, 1.0)), Vec3::ONE);
         // y does not take part: a point just below the floor keeps its cell.
         assert_eq!(c.eval((0.0, 0.0), Vec3::new(1.0, -1e-7, 1.0)), Vec3::ZERO);
+    }
+
+    #[test]
+    fn floor_to_int_matches_floor() {
+        let mut x = 1.0e-6f32;
+        while x < 3.0e9 {
+            for v in [x, -x, x * 1e-9, -x * 1e-9, x.fract(), -(x.fract())] {
+                assert_eq!(floor_to_int(v), v.floor() as i64, "{v}");
+            }
+            x = x * 1.37 + 0.731;
+        }
+        for v in [
+            0.0,
+            -0.0,
+            -1e-30,
+            1e-30,
+            -0.5,
+            0.5,
+            -1.0,
+            1.0,
+            16777215.5,
+            -16777215.5,
+        ] {
+            assert_eq!(floor_to_int(v), v.floor() as i64, "{v}");
+        }
     }
 
     #[test]
