@@ -38,6 +38,26 @@ impl std::ops::AddAssign for RayCounts {
     }
 }
 
+/// What one primary ray found.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sample {
+    pub color: Vec3,
+    /// A hash of what the ray's whole tree met: each surface (primitive, and part of a
+    /// cylinder), whether each light was blocked, and the cell of a procedural pattern.
+    /// Two samples of a pixel with different signatures straddle an edge, however alike
+    /// their colours (adaptive sampling, progressive.rs).
+    pub signature: u32,
+}
+
+/// Folds `value` into a running signature (order matters: a reflection of A seen in B
+/// differs from one of B seen in A).
+#[inline]
+fn mix(signature: u32, value: u32) -> u32 {
+    (signature ^ value)
+        .wrapping_mul(0x9e37_79b1)
+        .rotate_left(15)
+}
+
 /// A straight pass through a clear surface does not bend the ray, so it cannot start a
 /// cycle and does not count towards the bounce limit; this many in a row end the path.
 const MAX_STRAIGHT_CROSSINGS: u32 = 64;
@@ -62,6 +82,8 @@ pub struct Integrator<'a> {
     /// rounding.
     min_weight: f32,
     pub counts: RayCounts,
+    /// The signature of the primary ray being traced.
+    signature: u32,
 }
 
 impl<'a> Integrator<'a> {
@@ -71,6 +93,7 @@ impl<'a> Integrator<'a> {
             self_intersection: SelfIntersection::default(),
             min_weight,
             counts: RayCounts::default(),
+            signature: 0,
         }
     }
 
@@ -91,11 +114,16 @@ impl<'a> Integrator<'a> {
         }
     }
 
-    /// The colour seen along a primary ray (unit direction).
+    /// The colour seen along a primary ray (unit direction), and its signature.
     #[inline]
-    pub fn trace_primary(&mut self, ray: Ray) -> Vec3 {
+    pub fn trace_primary(&mut self, ray: Ray) -> Sample {
         self.counts.primary += 1;
-        self.trace(RayQuery::new(ray), 0.0, 0, 0, 1.0)
+        self.signature = 0;
+        let color = self.trace(RayQuery::new(ray), 0.0, 0, 0, 1.0);
+        Sample {
+            color,
+            signature: self.signature,
+        }
     }
 
     /// The colour along `q` beyond distance `t_min`.
@@ -103,8 +131,10 @@ impl<'a> Integrator<'a> {
         let scene = self.scene;
         let ray = q.ray;
         let Some((hit, index)) = scene.intersect(&q, t_min, f32::INFINITY) else {
+            self.signature = mix(self.signature, u32::MAX);
             return scene.background;
         };
+        self.signature = mix(self.signature, index ^ (hit.detail.part() << 24));
         let prim = &scene.primitives[index as usize];
         let object = &scene.objects[prim.object as usize];
         let material = &object.material;
@@ -129,6 +159,10 @@ impl<'a> Integrator<'a> {
                 prim.shape.uv(&surface, &hit)
             };
             let base = material.texture.eval(uv, p - object.origin);
+            if !material.texture.needs_uv() {
+                // A pattern's colour names its cell (an image varies within cells instead).
+                self.signature = mix(self.signature, base.x.to_bits() ^ base.z.to_bits());
+            }
             let mut diffuse = base * scene.ambient * material.ambient;
             let mut specular = Vec3::ZERO;
             for light in &scene.lights {
@@ -144,6 +178,14 @@ impl<'a> Integrator<'a> {
                 // The shadow ray ends exactly at the light: t = 1 on (light − origin).
                 let shadow = RayQuery::new(Ray::new(origin, light.position - origin));
                 let visible = scene.transmittance(&shadow, 1.0);
+                let shadow_class = if visible == Vec3::ZERO {
+                    0
+                } else if visible == Vec3::ONE {
+                    1
+                } else {
+                    2 // through transparent surfaces
+                };
+                self.signature = mix(self.signature, shadow_class);
                 if visible == Vec3::ZERO {
                     continue;
                 }

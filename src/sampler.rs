@@ -29,7 +29,11 @@ impl Sampler {
         Self {
             n,
             layout,
-            order: farthest_point_order(n),
+            order: if n.is_power_of_two() {
+                sobol_order(n)
+            } else {
+                farthest_point_order(n)
+            },
         }
     }
 
@@ -49,20 +53,24 @@ impl Sampler {
     /// The position of subsample `k` inside pixel (x, y), in [0, 1)².
     #[inline]
     pub fn offset(&self, x: u32, y: u32, k: u32) -> (f32, f32) {
-        // Each pixel walks the same farthest-point order, rotated on the torus by its own
-        // hashed shift (a Cranley–Patterson rotation in whole cells). Rotation keeps every
-        // prefix of the order as evenly spread, but no longer the same in every pixel: a
-        // part-way image is unbiased noise rather than the whole picture shifted by a
-        // fraction of a pixel.
+        // Each pixel walks the same order, moved by its own hashed shift, so that a part-way
+        // image is unbiased noise rather than the whole picture shifted by a fraction of a
+        // pixel. For power-of-two N the shift is digital (cell bits XOR a random number):
+        // it maps every box of the sampler's stratification onto another, so prefixes stay
+        // stratified. Otherwise it is a rotation on the torus in whole cells
+        // (Cranley–Patterson), which keeps the farthest-point spacing.
         let n = self.n;
         let shift = hash(x.wrapping_mul(0x9e37_79b1) ^ hash(y ^ 0x5bd1_e995));
         let (cx, cy) = self.order[k as usize];
-        // The rotation per axis: 16 hash bits mapped onto 0..n by a multiply and a shift
-        // (Lemire's reduction); `shift % n` costs an integer division, as much as the rest
-        // of this function.
+        // 16 hash bits per axis mapped onto 0..n by a multiply and a shift (Lemire's
+        // reduction); `shift % n` costs an integer division, as much as the rest of this.
         let (sx, sy) = (((shift & 0xffff) * n) >> 16, ((shift >> 16) * n) >> 16);
-        let wrap = |c: u32| if c >= n { c - n } else { c };
-        let (cx, cy) = (wrap(cx + sx), wrap(cy + sy));
+        let (cx, cy) = if n.is_power_of_two() {
+            (cx ^ sx, cy ^ sy)
+        } else {
+            let wrap = |c: u32| if c >= n { c - n } else { c };
+            (wrap(cx + sx), wrap(cy + sy))
+        };
         let inv = 1.0 / n as f32;
         let (jx, jy) = match self.layout {
             SampleLayout::Grid => (0.5, 0.5),
@@ -75,9 +83,38 @@ impl Sampler {
     }
 }
 
-/// Greedy farthest-point order of the cells of an n×n grid, on the torus (neighbouring
-/// pixels continue the pattern): each next cell is the one farthest from all chosen ones,
-/// ties broken by the lowest index so the order is fixed.
+/// For N a power of two: the cells in the order of the first N² points of the Sobol
+/// (0, 2)-sequence, which visits each cell once. Every prefix of 2^k subsamples then has
+/// one subsample in each of the 2^k equal boxes of any shape 2^-a × 2^-b (a + b = k) that are
+/// no finer than a cell: stratified for edges of every orientation at every power of two.
+/// The first half of a power-of-two prefix is such a prefix too, which the adaptive
+/// sampler's error estimate relies on (accumulator.rs).
+fn sobol_order(n: u32) -> Vec<(u32, u32)> {
+    let bits = n.trailing_zeros();
+    (0..n * n)
+        .map(|i| {
+            let x = i.reverse_bits(); // van der Corput: the sequence's first dimension
+            let mut y = 0u32;
+            let (mut v, mut j) = (1u32 << 31, i);
+            while j != 0 {
+                if j & 1 != 0 {
+                    y ^= v;
+                }
+                j >>= 1;
+                v ^= v >> 1;
+            }
+            if bits == 0 {
+                (0, 0)
+            } else {
+                (x >> (32 - bits), y >> (32 - bits))
+            }
+        })
+        .collect()
+}
+
+/// For other N: a greedy farthest-point order of the cells of the N×N grid, on the torus
+/// (neighbouring pixels continue the pattern): each next cell is the one farthest from all
+/// chosen ones, ties broken by the lowest index so the order is fixed.
 fn farthest_point_order(n: u32) -> Vec<(u32, u32)> {
     let cells: Vec<(u32, u32)> = (0..n * n).map(|i| (i % n, i / n)).collect();
     let torus = |a: (u32, u32), b: (u32, u32)| {
@@ -164,22 +201,35 @@ mod tests {
         assert!(firsts.len() > 1, "pixels start in different cells");
     }
 
+    /// For power-of-two N, every prefix of 2^k subsamples puts exactly one subsample in each
+    /// box 2^-a × 2^-b (a + b = k) no finer than a cell, in every pixel (whatever its rotation).
     #[test]
-    fn every_prefix_of_sixteen_is_a_two_by_two_spaced_lattice() {
-        // On the torus, the first 4 of a 4×4 order are the cells of a 2-spaced lattice.
-        let s = Sampler::new(4, SampleLayout::Grid);
-        for (px, py) in [(3, 9), (100, 7)] {
-            let mut cells: Vec<(u32, u32)> = (0..4)
-                .map(|k| {
-                    let (x, y) = s.offset(px, py, k);
-                    ((x * 4.0) as u32, (y * 4.0) as u32)
-                })
-                .collect();
-            cells.sort();
-            let (ox, oy) = (cells[0].0 % 2, cells[0].1 % 2);
-            let mut lattice = vec![(ox, oy), (ox, oy + 2), (ox + 2, oy), (ox + 2, oy + 2)];
-            lattice.sort();
-            assert_eq!(cells, lattice);
+    fn power_of_two_prefixes_are_stratified_in_every_box_shape() {
+        for n in [2u32, 4, 8] {
+            let bits = n.trailing_zeros();
+            let s = Sampler::new(n, SampleLayout::Stratified);
+            for (px, py) in [(0, 0), (3, 9), (100, 7), (641, 333)] {
+                for k in 0..=2 * bits {
+                    let points: Vec<(f32, f32)> =
+                        (0..1u32 << k).map(|i| s.offset(px, py, i)).collect();
+                    for a in k.saturating_sub(bits)..=k.min(bits) {
+                        let b = k - a;
+                        let mut boxes = vec![0u32; 1 << k];
+                        for &(x, y) in &points {
+                            let (bx, by) =
+                                ((x * (1 << a) as f32) as u32, (y * (1 << b) as f32) as u32);
+                            boxes[((by << a) + bx) as usize] += 1;
+                        }
+                        assert!(
+                            boxes.iter().all(|&c| c == 1),
+                            "n {n}, pixel ({px}, {py}), prefix {}, boxes 1/{} × 1/{}",
+                            1 << k,
+                            1 << a,
+                            1 << b
+                        );
+                    }
+                }
+            }
         }
     }
 

@@ -25,7 +25,9 @@ fn look_at(scene: &Scene, target: Vec3) -> Vec3 {
 fn look_from(scene: &Scene, eye: Vec3, target: Vec3) -> Vec3 {
     let prepared = PreparedScene::new(scene);
     let mut integrator = Integrator::new(&prepared, 0.0);
-    integrator.trace_primary(Ray::new(eye, (target - eye).normalize()))
+    integrator
+        .trace_primary(Ray::new(eye, (target - eye).normalize()))
+        .color
 }
 
 /// The floor at `p` seen from just above it (below every occluder).

@@ -488,7 +488,9 @@ proptest! {
     ) {
         let scene = seed_prepared();
         let mut integrator = Integrator::new(scene, 0.0);
-        let c = integrator.trace_primary(Ray::new(Vec3::new(eye.0, eye.1, eye.2), dir));
+        let c = integrator
+            .trace_primary(Ray::new(Vec3::new(eye.0, eye.1, eye.2), dir))
+            .color;
         prop_assert!(c.is_finite(), "{c}");
     }
 }

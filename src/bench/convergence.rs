@@ -24,6 +24,7 @@ pub struct Config {
     pub tolerance: f32,
     /// The adaptive strategy's minimum subsamples per pixel.
     pub min_samples: u32,
+    pub edge_samples: u32,
     pub out_dir: PathBuf,
     pub runs: usize,
 }
@@ -74,8 +75,13 @@ pub fn run(cfg: Config) -> Result<()> {
     let mut measure = |strategy: &str, settings: RenderSettings, every_pass: bool| {
         let mut job = ProgressiveRender::new(prepared.clone(), scene.camera, settings);
         let mut seconds = 0.0;
-        while let PassOutcome::Finished(stats) = job.step(&NEVER) {
-            seconds += stats.seconds;
+        loop {
+            // The whole step: the pass and, for adaptive sampling, deciding which pixels stop.
+            let start = Instant::now();
+            let PassOutcome::Finished(stats) = job.step(&NEVER) else {
+                break;
+            };
+            seconds += start.elapsed().as_secs_f64();
             rays += stats.rays;
             ray_seconds += stats.seconds;
             if every_pass || job.is_converged() {
@@ -105,6 +111,7 @@ pub fn run(cfg: Config) -> Result<()> {
     let adaptive = Some(AdaptiveSettings {
         tolerance: cfg.tolerance,
         min_samples: cfg.min_samples,
+        edge_samples: cfg.edge_samples,
     });
     // (name, N, layout, adaptive, measured after every pass rather than once finished)
     let mut strategies = vec![("seed 2×2 grid", 2, SampleLayout::Grid, None, false)];

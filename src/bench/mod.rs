@@ -33,6 +33,9 @@ pub enum BenchKind {
         /// Minimum subsamples per pixel of the adaptive strategies.
         #[arg(long, default_value_t = prism::render::AdaptiveSettings::default().min_samples)]
         min_samples: u32,
+        /// Minimum subsamples of the adaptive strategies' pixels beside an edge.
+        #[arg(long, default_value_t = prism::render::AdaptiveSettings::default().edge_samples)]
+        edge_samples: u32,
     },
     /// Numerical accuracy tables (docs/numerics.md).
     Numerics {
@@ -51,6 +54,7 @@ pub fn run(args: BenchArgs) -> Result<()> {
             runs,
             tolerance,
             min_samples,
+            edge_samples,
         } => {
             let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
             let out_dir = out.unwrap_or_else(|| {
@@ -64,6 +68,7 @@ pub fn run(args: BenchArgs) -> Result<()> {
                 quick,
                 tolerance,
                 min_samples: min_samples.max(1),
+                edge_samples,
                 out_dir,
                 runs: if quick { runs.clamp(1, 3) } else { runs.max(1) },
             })

@@ -29,6 +29,17 @@ pub enum HitDetail {
     Cylinder { part: CylinderPart },
 }
 
+impl HitDetail {
+    /// Which part of the shape was hit: 0, or for a cylinder its side or a cap.
+    #[inline]
+    pub fn part(&self) -> u32 {
+        match self {
+            HitDetail::Cylinder { part } => *part as u32,
+            _ => 0,
+        }
+    }
+}
+
 /// A point on a surface, as shading needs it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SurfacePoint {

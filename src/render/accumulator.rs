@@ -6,17 +6,28 @@ use glam::Vec3;
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct PixelSum {
     pub color: Vec3,
-    /// Sum of squared luminance, for the adaptive sampler's variance estimate.
-    pub luma_sq: f32,
+    /// Sum of the first `count / 2` subsamples when `count` is a power of two (taken when
+    /// `count` reached half of it): the half-size estimate that `error_estimate` compares to.
+    pub half: Vec3,
     pub count: u32,
+    /// The signature of the first subsample (integrator.rs).
+    pub signature: u32,
+    /// Whether a later subsample's signature differed: an edge crosses the pixel.
+    pub mixed: bool,
 }
 
 impl PixelSum {
     #[inline]
-    pub fn add(&mut self, c: Vec3) {
+    pub fn add(&mut self, c: Vec3, signature: u32) {
+        if self.count == 0 {
+            self.signature = signature;
+        } else {
+            self.mixed |= signature != self.signature;
+        }
+        if self.count.is_power_of_two() {
+            self.half = self.color;
+        }
         self.color += c;
-        let y = luminance(c);
-        self.luma_sq += y * y;
         self.count += 1;
     }
 
@@ -29,16 +40,18 @@ impl PixelSum {
         }
     }
 
-    /// The standard error of the mean luminance: how far the pixel may still move.
+    /// How far the mean luminance may still be from the converged pixel: its distance from
+    /// the mean of the first half of the subsamples (Dammertz et al. 2010, "A hierarchical
+    /// automatic stopping condition"). Known at power-of-two counts, when both halves of the
+    /// sampler's order are stratified (sampler.rs); unknown (infinite) otherwise. Unlike the
+    /// standard error, it follows the faster convergence of stratified subsamples at edges.
     #[inline]
-    pub fn standard_error(&self) -> f32 {
-        if self.count < 2 {
+    pub fn error_estimate(&self) -> f32 {
+        if self.count < 2 || !self.count.is_power_of_two() {
             return f32::INFINITY;
         }
         let n = self.count as f32;
-        let mean = luminance(self.color) / n;
-        let variance = ((self.luma_sq / n - mean * mean) * n / (n - 1.0)).max(0.0);
-        (variance / n).sqrt()
+        (luminance(self.color) / n - luminance(self.half) / (0.5 * n)).abs()
     }
 }
 
@@ -108,25 +121,43 @@ mod tests {
     #[test]
     fn mean_and_quantisation() {
         let mut p = PixelSum::default();
-        p.add(Vec3::new(1.0, 0.0, 0.5));
-        p.add(Vec3::new(0.0, 0.0, 0.5));
+        p.add(Vec3::new(1.0, 0.0, 0.5), 7);
+        p.add(Vec3::new(0.0, 0.0, 0.5), 7);
         assert_eq!(p.mean(), Vec3::new(0.5, 0.0, 0.5));
         assert_eq!(to_8bit(p.mean()), [128, 0, 128]);
         assert_eq!(to_8bit(Vec3::new(2.0, -1.0, f32::NAN)), [255, 0, 0]);
     }
 
     #[test]
-    fn standard_error_of_constant_and_varying_samples() {
-        let mut flat = PixelSum::default();
-        for _ in 0..4 {
-            flat.add(Vec3::splat(0.3));
+    fn a_differing_signature_marks_the_pixel_mixed() {
+        let mut p = PixelSum::default();
+        p.add(Vec3::ONE, 7);
+        p.add(Vec3::ONE, 7);
+        assert!(!p.mixed);
+        p.add(Vec3::ONE, 8);
+        p.add(Vec3::ONE, 7);
+        assert!(p.mixed);
+        assert_eq!(p.signature, 7, "the first subsample's signature stays");
+    }
+
+    #[test]
+    fn error_estimate_compares_with_the_first_half_at_powers_of_two() {
+        let mut p = PixelSum::default();
+        for v in [1.0, 1.0, 0.0] {
+            p.add(Vec3::splat(v), 0);
         }
-        assert!(flat.standard_error() < 1e-3);
-        let mut edge = PixelSum::default();
-        for i in 0..4 {
-            edge.add(Vec3::splat((i % 2) as f32));
+        assert_eq!(p.error_estimate(), f32::INFINITY, "3 is not a power of two");
+        p.add(Vec3::ZERO, 0);
+        // Mean of all four 0.5, of the first two 1.
+        assert!((p.error_estimate() - 0.5).abs() < 1e-6);
+        let mut q = PixelSum::default();
+        for v in [1.0, 0.0, 1.0, 0.0, 1.0, 0.0, 1.0, 0.0] {
+            q.add(Vec3::splat(v), 0);
         }
-        // Luminance 0,1,0,1: sample variance 1/3, standard error √(1/12) ≈ 0.289.
-        assert!((edge.standard_error() - (1.0f32 / 12.0).sqrt()).abs() < 1e-3);
+        assert!(
+            q.error_estimate().abs() < 1e-6,
+            "halves agree: {}",
+            q.error_estimate()
+        );
     }
 }

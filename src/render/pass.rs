@@ -56,8 +56,11 @@ pub fn render_pass(
                 let (x, y) = ((index % width) as u32, (index / width) as u32);
                 let (dx, dy) = sampler.offset(x, y, pass);
                 let ray = rays.ray(x as f32 + dx, y as f32 + dy);
-                let color = integrator.trace_primary(ray);
-                sum.add(color.clamp(glam::Vec3::ZERO, glam::Vec3::ONE));
+                let sample = integrator.trace_primary(ray);
+                sum.add(
+                    sample.color.clamp(glam::Vec3::ZERO, glam::Vec3::ONE),
+                    sample.signature,
+                );
                 traced += 1;
             }
             Some((integrator.counts, traced))

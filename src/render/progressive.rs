@@ -8,6 +8,7 @@ use crate::camera::{Camera, CameraRays};
 use crate::integrator::RayCounts;
 use crate::sampler::Sampler;
 use crate::scene::PreparedScene;
+use rayon::prelude::*;
 use std::sync::Arc;
 
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -115,10 +116,14 @@ impl ProgressiveRender {
         PassOutcome::Finished(stats)
     }
 
-    /// Adaptive sampling: a pixel stops once it has its minimum samples and its standard
-    /// error is within tolerance, and its eight neighbours have stopped too (so thin edges
-    /// that one pixel only grazes keep refining). A stopped pixel never restarts, so every
-    /// active pixel holds exactly subsamples 0 .. passes_done.
+    /// Adaptive sampling. A pixel stops once it has its minimum samples and the estimated
+    /// error of its mean luminance is within tolerance (`PixelSum::error_estimate`: the full
+    /// mean against the mean of the first half, at power-of-two counts). Signatures find
+    /// edges that the estimate cannot see yet: a pixel whose own subsamples disagree (mixed),
+    /// or whose neighbour's signature differs from its own or is mixed, lies on or beside an
+    /// edge that its first few subsamples may have missed, and goes on to at least
+    /// `edge_samples`. A stopped pixel never restarts, so every active pixel holds exactly
+    /// subsamples 0 .. passes_done.
     fn update_active(&mut self) {
         let Some(adaptive) = self.settings.adaptive else {
             return;
@@ -126,30 +131,35 @@ impl ProgressiveRender {
         if self.passes_done < adaptive.min_samples {
             return;
         }
+        let near_edges_decided = self.passes_done >= adaptive.edge_samples;
         let (w, h) = (self.settings.width as usize, self.settings.height as usize);
-        let settled: Vec<bool> = self
-            .accumulator
-            .pixels
-            .iter()
-            .map(|p| p.standard_error() <= adaptive.tolerance)
-            .collect();
-        let mut count = 0;
-        for y in 0..h {
-            for x in 0..w {
-                let i = y * w + x;
-                if !self.active[i] {
-                    continue;
-                }
-                let mut all_settled = true;
-                for ny in y.saturating_sub(1)..(y + 2).min(h) {
-                    for nx in x.saturating_sub(1)..(x + 2).min(w) {
-                        all_settled &= settled[ny * w + nx];
+        let pixels = &self.accumulator.pixels;
+        let count: usize = self
+            .active
+            .par_chunks_mut(w)
+            .enumerate()
+            .map(|(y, row)| {
+                let mut count = 0;
+                for (x, active) in row.iter_mut().enumerate() {
+                    if !*active {
+                        continue;
                     }
+                    let p = &pixels[y * w + x];
+                    let settled = p.error_estimate() <= adaptive.tolerance;
+                    let beside_edge = settled
+                        && !near_edges_decided
+                        && (y.saturating_sub(1)..(y + 2).min(h)).any(|ny| {
+                            (x.saturating_sub(1)..(x + 2).min(w)).any(|nx| {
+                                let n = &pixels[ny * w + nx];
+                                n.mixed || n.signature != p.signature
+                            })
+                        });
+                    *active = !settled || beside_edge;
+                    count += *active as usize;
                 }
-                self.active[i] = !all_settled;
-                count += self.active[i] as usize;
-            }
-        }
+                count
+            })
+            .sum();
         self.active_count = count;
     }
 
