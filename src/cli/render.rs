@@ -37,7 +37,7 @@ pub struct RenderArgs {
     /// Stop refining pixels whose subsamples agree.
     #[arg(long)]
     pub adaptive: bool,
-    /// Adaptive tolerance: standard error of a pixel's luminance, 0..1 scale.
+    /// Adaptive tolerance: estimated error of a pixel's mean luminance, 0..1 scale.
     #[arg(long, default_value_t = AdaptiveSettings::default().tolerance, allow_negative_numbers = true)]
     pub tolerance: f32,
     /// Trace every secondary ray, however faint (the unoptimised reference).
