@@ -77,7 +77,7 @@ impl WideNode {
     }
 
     /// Which lanes' boxes the ray enters before `t_max` (bit i for lane i), and the entry
-    /// distances. Robust as `Aabb::hit` is: the far distances are widened by 2γ(3) (pbrt-v4
+    /// distances. Robust against rounding: the far distances are widened by 2γ(3) (pbrt-v4
     /// 6.1.2), and an axis on which the ray runs exactly in a slab's boundary plane
     /// (0·∞ = NaN) leaves the interval alone (`max_or`/`min_or` keep the other operand).
     #[inline(always)]
@@ -464,6 +464,35 @@ mod tests {
         walk(&bvh, 0, &order, &bounds, &mut seen, &[]);
         assert!(seen.iter().all(|&n| n == 1));
         assert!(bvh.depth() <= MAX_DEPTH + 1);
+    }
+
+    /// The entry distance into lane 0's box and whether the ray enters it before `t_max`.
+    fn enter_one(b: Aabb, q: &RayQuery, t_max: f32) -> Option<f32> {
+        let mut node = WideNode::EMPTY;
+        node.set(0, b, Child::Leaf(0..1));
+        let (mask, t) = node.enter(&WideRay::new(q), t_max);
+        (mask & 1 != 0).then(|| t.to_array()[0])
+    }
+
+    #[test]
+    fn slab_test_hits_and_misses() {
+        let b = Aabb::from_points(&[Vec3::splat(-1.0), Vec3::splat(1.0)]);
+        let q = RayQuery::new(Ray::new(Vec3::new(0.0, 0.0, 5.0), -Vec3::Z));
+        assert_eq!(enter_one(b, &q, f32::INFINITY), Some(4.0));
+        assert_eq!(enter_one(b, &q, 3.0), None);
+        let miss = RayQuery::new(Ray::new(Vec3::new(2.0, 0.0, 5.0), -Vec3::Z));
+        assert_eq!(enter_one(b, &miss, f32::INFINITY), None);
+        let inside = RayQuery::new(Ray::new(Vec3::ZERO, Vec3::X));
+        assert_eq!(enter_one(b, &inside, f32::INFINITY), Some(0.0));
+    }
+
+    #[test]
+    fn flat_box_is_hit_by_axis_parallel_ray_on_its_face() {
+        // A box of zero thickness (a floor polygon) seen edge-on along its own plane:
+        // 0·∞ = NaN on y, which the lanes' NaN rule leaves out.
+        let b = Aabb::from_points(&[Vec3::new(-1.0, 0.0, -1.0), Vec3::new(1.0, 0.0, 1.0)]);
+        let q = RayQuery::new(Ray::new(Vec3::new(-5.0, 0.0, 0.0), Vec3::X));
+        assert_eq!(enter_one(b, &q, f32::INFINITY), Some(4.0));
     }
 
     #[test]
