@@ -1,6 +1,6 @@
 //! A ray, and the per-ray constants that every intersection test of that ray shares.
 
-use glam::Vec3;
+use glam::{Vec3, Vec4};
 
 /// A half-line `origin + t·dir`, t > 0. `dir` need not be unit length.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -26,39 +26,95 @@ impl Ray {
 pub struct RayQuery {
     pub ray: Ray,
     pub inv_dir: Vec3,
-    /// The axis along which `dir` is largest, and the two others in cyclic order (swapped
-    /// so the triangle winding is preserved when `dir` points down that axis).
-    pub kz: usize,
-    pub kx: usize,
-    pub ky: usize,
+    /// The axis along which `dir` is largest (z), and the two others in cyclic order (x, y;
+    /// swapped so the triangle winding is preserved when `dir` points down that axis).
+    pub axes: Axes,
     /// The shear that maps `dir` to the +z unit axis (Woop, Benthin and Wald 2013).
     pub shear: Vec3,
+}
+
+/// A permutation of the coordinate axes, applied without branches: glam's `v[k]` with a
+/// run-time `k` compiles to a chain of compares, and on rays of mixed directions those
+/// branches mispredict.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Axes {
+    pub x: usize,
+    pub y: usize,
+    pub z: usize,
+}
+
+impl Axes {
+    /// `v`'s coordinates along the permuted x, y and z axes.
+    #[inline(always)]
+    pub fn permute(&self, v: Vec3) -> [f32; 3] {
+        let a = v.extend(0.0).to_array();
+        // `& 3` proves the index in bounds of the four-element array: no check, no branch.
+        [a[self.x & 3], a[self.y & 3], a[self.z & 3]]
+    }
 }
 
 impl RayQuery {
     pub fn new(ray: Ray) -> Self {
         let d = ray.dir;
         let abs = d.abs();
-        let kz = if abs.x > abs.y {
+        let z = if abs.x > abs.y {
             if abs.x > abs.z { 0 } else { 2 }
         } else if abs.y > abs.z {
             1
         } else {
             2
         };
-        let mut kx = (kz + 1) % 3;
-        let mut ky = (kx + 1) % 3;
-        if d[kz] < 0.0 {
-            std::mem::swap(&mut kx, &mut ky);
+        // The next axes in cyclic order, swapped when dir points down z.
+        const NEXT: [usize; 4] = [1, 2, 0, 0];
+        let (mut x, mut y) = (NEXT[z & 3], NEXT[NEXT[z & 3] & 3]);
+        let [dx0, dy0, dz] = Axes { x, y, z }.permute(d);
+        let (mut dx, mut dy) = (dx0, dy0);
+        if dz < 0.0 {
+            std::mem::swap(&mut x, &mut y);
+            std::mem::swap(&mut dx, &mut dy);
         }
-        let shear = Vec3::new(d[kx] / d[kz], d[ky] / d[kz], 1.0 / d[kz]);
+        // Two packed divisions instead of six scalar ones (the same quotients, each
+        // correctly rounded): division is the slowest step of setting up a ray.
+        let shear = (Vec4::new(dx, dy, 1.0, 1.0) / dz).truncate();
+        let inv_dir = Vec4::ONE / d.extend(1.0);
         Self {
             ray,
-            inv_dir: d.recip(),
-            kz,
-            kx,
-            ky,
+            inv_dir: inv_dir.truncate(),
+            axes: Axes { x, y, z },
             shear,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_ray_runs_along_the_permuted_z_with_the_winding_kept() {
+        for (dir, z) in [
+            (Vec3::new(3.0, 1.0, -2.0), 0),
+            (Vec3::new(-3.0, 1.0, -2.0), 0),
+            (Vec3::new(0.1, 5.0, 2.0), 1),
+            (Vec3::new(0.1, -5.0, 2.0), 1),
+            (Vec3::new(0.0, 0.0, 1.0), 2),
+            (Vec3::new(1.0, -1.0, -1.5), 2),
+        ] {
+            let q = RayQuery::new(Ray::new(Vec3::ZERO, dir));
+            let Axes { x, y, z: kz } = q.axes;
+            assert_eq!(kz, z, "{dir}");
+            let mut all = [x, y, kz];
+            all.sort();
+            assert_eq!(all, [0, 1, 2]);
+            // x, y, z cyclic (an even permutation) exactly when dir points up its z axis.
+            let cyclic = (x + 1) % 3 == y;
+            assert_eq!(cyclic, dir[z] > 0.0, "{dir}");
+            // The shear maps dir onto (0, 0, 1).
+            let [px, py, pz] = q.axes.permute(dir);
+            let s = q.shear;
+            assert!((px - s.x * pz).abs() < 1e-6 && (py - s.y * pz).abs() < 1e-6);
+            assert!((s.z * pz - 1.0).abs() < 1e-6);
+            assert_eq!(q.inv_dir, dir.recip());
         }
     }
 }

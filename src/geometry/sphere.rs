@@ -22,8 +22,10 @@ impl Sphere {
     /// With f = o − c, the textbook discriminant b² − 4ac cancels catastrophically when the
     /// sphere is small or far away. Instead the discriminant is a·(r² − |f⊥|²), where f⊥ is
     /// the part of f perpendicular to the ray: it is computed from a short vector and keeps
-    /// its accuracy at any distance. The constant term |f|² − r² is formed as
-    /// (|f| − r)(|f| + r) so that it stays accurate for origins on the surface (secondary rays).
+    /// its accuracy at any distance (Ray Tracing Gems chapter 7). No square root comes
+    /// before the discriminant's own: this test lies on the critical path of most rays, and
+    /// forming r² − |f⊥|² or |f|² − r² as (r − |f⊥|)(r + |f⊥|) would add a square root to
+    /// it without a better error bound (docs/numerics.md).
     #[inline]
     pub fn roots(&self, ray: &Ray) -> Option<(f32, f32)> {
         let f = ray.origin - self.center;
@@ -31,11 +33,9 @@ impl Sphere {
         let a = d.length_squared();
         let beta = -f.dot(d);
         let f_perp = f + d * (beta / a);
-        let r = self.radius;
-        let l = f_perp.length();
-        let disc = a * ((r - l) * (r + l));
-        let fl = f.length();
-        let c = (fl - r) * (fl + r);
+        let r2 = self.radius * self.radius;
+        let disc = a * (r2 - f_perp.length_squared());
+        let c = f.length_squared() - r2;
         stable_quadratic_roots(a, beta, c, disc)
     }
 

@@ -39,18 +39,18 @@ impl Triangle {
     /// The hit with t in (t_min, t_max), t_min ≥ 0.
     #[inline]
     pub fn intersect_after(&self, q: &RayQuery, t_min: f32, t_max: f32) -> Option<TriangleHit> {
-        let (kx, ky, kz) = (q.kx, q.ky, q.kz);
         let s = q.shear;
-        // Translate to the ray origin, then shear so the ray runs along +z.
-        let a = self.p[0] - q.ray.origin;
-        let b = self.p[1] - q.ray.origin;
-        let c = self.p[2] - q.ray.origin;
-        let ax = a[kx] - s.x * a[kz];
-        let ay = a[ky] - s.y * a[kz];
-        let bx = b[kx] - s.x * b[kz];
-        let by = b[ky] - s.y * b[kz];
-        let cx = c[kx] - s.x * c[kz];
-        let cy = c[ky] - s.y * c[kz];
+        // Translate to the ray origin, permute so the ray's largest axis is z, then shear so
+        // the ray runs along +z.
+        let [ax, ay, a_z] = q.axes.permute(self.p[0] - q.ray.origin);
+        let [bx, by, b_z] = q.axes.permute(self.p[1] - q.ray.origin);
+        let [cx, cy, c_z] = q.axes.permute(self.p[2] - q.ray.origin);
+        let ax = ax - s.x * a_z;
+        let ay = ay - s.y * a_z;
+        let bx = bx - s.x * b_z;
+        let by = by - s.y * b_z;
+        let cx = cx - s.x * c_z;
+        let cy = cy - s.y * c_z;
         let mut u = cx * by - cy * bx;
         let mut v = ax * cy - ay * cx;
         let mut w = bx * ay - by * ax;
@@ -71,9 +71,9 @@ impl Triangle {
         if det == 0.0 {
             return None;
         }
-        let az = s.z * a[kz];
-        let bz = s.z * b[kz];
-        let cz = s.z * c[kz];
+        let az = s.z * a_z;
+        let bz = s.z * b_z;
+        let cz = s.z * c_z;
         let t_scaled = u * az + v * bz + w * cz;
         // t = t_scaled / det must lie in (0, t_max); compare without dividing.
         if det < 0.0 && (t_scaled >= 0.0 || t_scaled < t_max * det) {
