@@ -113,6 +113,33 @@ impl CameraRays {
         let dir = self.forward + self.right * sx + self.up * sy;
         Ray::new(self.origin, dir.normalize())
     }
+
+    /// Where the ray through point `p` crosses the image, in pixels from the top-left
+    /// corner (the inverse of `ray`, in f64), and the depth of `p` along the view axis; None
+    /// when `p` is not in front of the eye.
+    pub fn project(&self, p: glam::DVec3, width: u32, height: u32) -> Option<(f64, f64)> {
+        let v = p - self.origin.as_dvec3();
+        let depth = v.dot(self.forward.as_dvec3());
+        if depth.is_nan() || depth <= 0.0 {
+            return None;
+        }
+        let (right, up) = (self.right.as_dvec3(), self.up.as_dvec3());
+        let sx = v.dot(right) / (depth * right.length_squared());
+        let sy = v.dot(up) / (depth * up.length_squared());
+        Some((
+            (sx + 1.0) * 0.5 * width as f64,
+            (1.0 - sy) * 0.5 * height as f64,
+        ))
+    }
+
+    /// The camera's position and viewing direction (unit).
+    pub fn eye(&self) -> Vec3 {
+        self.origin
+    }
+
+    pub fn forward(&self) -> Vec3 {
+        self.forward
+    }
 }
 
 #[cfg(test)]

@@ -1,7 +1,8 @@
 //! The Whitted integrator: Phong shading with shadow rays at each hit, plus recursive
 //! mirror-reflection and transmission (refraction) rays.
 
-use crate::geometry::{Ray, RayQuery};
+use crate::first_hit::Candidate;
+use crate::geometry::{Ray, RayQuery, ShapeHit};
 use crate::material::{reflect, refract};
 use crate::numerics::offset_ray_origin;
 use crate::scene::PreparedScene;
@@ -126,14 +127,45 @@ impl<'a> Integrator<'a> {
         }
     }
 
+    /// `trace_primary` for a ray that can only hit `candidates` first (first_hit.rs): the
+    /// same colour and signature, found without traversing the BVH.
+    #[inline]
+    pub fn trace_primary_among(&mut self, ray: Ray, candidates: &[Candidate]) -> Sample {
+        self.counts.primary += 1;
+        self.signature = 0;
+        let color = if candidates.is_empty() {
+            self.shade(None, 0, 0, 1.0)
+        } else {
+            let q = RayQuery::new(ray);
+            let found = self.scene.intersect_among(&q, candidates);
+            self.shade(found.map(|hit| (q, hit)), 0, 0, 1.0)
+        };
+        Sample {
+            color,
+            signature: self.signature,
+        }
+    }
+
     /// The colour along `q` beyond distance `t_min`.
     fn trace(&mut self, q: RayQuery, t_min: f32, depth: u32, straight: u32, weight: f32) -> Vec3 {
+        let found = self.scene.intersect(&q, t_min, f32::INFINITY);
+        self.shade(found.map(|hit| (q, hit)), depth, straight, weight)
+    }
+
+    /// The colour that ray `q` brings back from `hit` (None: it left the scene).
+    fn shade(
+        &mut self,
+        hit: Option<(RayQuery, (ShapeHit, u32))>,
+        depth: u32,
+        straight: u32,
+        weight: f32,
+    ) -> Vec3 {
         let scene = self.scene;
-        let ray = q.ray;
-        let Some((hit, index)) = scene.intersect(&q, t_min, f32::INFINITY) else {
+        let Some((q, (hit, index))) = hit else {
             self.signature = mix(self.signature, u32::MAX);
             return scene.background;
         };
+        let ray = q.ray;
         self.signature = mix(self.signature, index ^ (hit.detail.part() << 24));
         let prim = &scene.primitives[index as usize];
         let object = &scene.objects[prim.object as usize];

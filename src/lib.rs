@@ -5,6 +5,7 @@
 //! interactive viewer and the bench on top.
 
 pub mod camera;
+pub mod first_hit;
 pub mod geometry;
 pub mod integrator;
 pub mod light;

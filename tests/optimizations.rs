@@ -69,3 +69,30 @@ fn the_bvh_answers_as_a_flat_list_would() {
         image(Arc::new(flat), scene.camera, s)
     );
 }
+
+#[test]
+fn first_hit_tiles_draw_the_image_the_bvh_draws() {
+    // Primary rays that look up their candidates by tile (first_hit.rs) must see exactly
+    // what a traversal of the BVH sees, from the seed camera and from one among the
+    // objects whose boxes straddle the eye's plane.
+    let scene = seed();
+    let prepared = Arc::new(PreparedScene::new(&scene));
+    let low = prism::camera::Camera::looking_along(
+        glam::Vec3::new(3.0, -13.0, -50.0),
+        glam::Vec3::new(-0.3, -0.05, -1.0),
+        70.0,
+    )
+    .unwrap();
+    for camera in [scene.camera, low] {
+        let tiles = RenderSettings::new(203, 150, 2);
+        assert!(tiles.first_hit_tiles);
+        let traversal = RenderSettings {
+            first_hit_tiles: false,
+            ..tiles
+        };
+        assert_eq!(
+            image(prepared.clone(), camera, tiles),
+            image(prepared.clone(), camera, traversal)
+        );
+    }
+}

@@ -3,6 +3,7 @@
 use super::accumulator::Accumulator;
 use super::settings::RenderSettings;
 use crate::camera::CameraRays;
+use crate::first_hit::FirstHitTiles;
 use crate::integrator::{Integrator, RayCounts};
 use crate::sampler::Sampler;
 use crate::scene::PreparedScene;
@@ -27,6 +28,7 @@ pub struct PassStats {
 pub fn render_pass(
     scene: &PreparedScene,
     rays: &CameraRays,
+    tiles: Option<&FirstHitTiles>,
     sampler: &Sampler,
     pass: u32,
     settings: &RenderSettings,
@@ -56,7 +58,10 @@ pub fn render_pass(
                 let (x, y) = ((index % width) as u32, (index / width) as u32);
                 let (dx, dy) = sampler.offset(x, y, pass);
                 let ray = rays.ray(x as f32 + dx, y as f32 + dy);
-                let sample = integrator.trace_primary(ray);
+                let sample = match tiles.and_then(|t| t.at(x, y)) {
+                    Some(candidates) => integrator.trace_primary_among(ray, candidates),
+                    None => integrator.trace_primary(ray),
+                };
                 sum.add(
                     sample.color.clamp(glam::Vec3::ZERO, glam::Vec3::ONE),
                     sample.signature,

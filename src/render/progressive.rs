@@ -5,6 +5,7 @@ use super::accumulator::Accumulator;
 use super::pass::{PassStats, render_pass};
 use super::settings::RenderSettings;
 use crate::camera::{Camera, CameraRays};
+use crate::first_hit::FirstHitTiles;
 use crate::integrator::RayCounts;
 use crate::sampler::Sampler;
 use crate::scene::PreparedScene;
@@ -27,6 +28,9 @@ pub struct ProgressiveRender {
     settings: RenderSettings,
     sampler: Sampler,
     rays: CameraRays,
+    /// Built at the first pass after the camera or the scene changes (none when the
+    /// settings turn first-hit tiles off).
+    tiles: Option<FirstHitTiles>,
     accumulator: Accumulator,
     /// Pixels still refining (all of them unless adaptive sampling has stopped some).
     active: Vec<bool>,
@@ -47,6 +51,7 @@ impl ProgressiveRender {
         Self {
             sampler: Sampler::new(settings.aa, settings.layout),
             rays: camera.rays(settings.width, settings.height),
+            tiles: None,
             accumulator: Accumulator::new(settings.width, settings.height),
             active: vec![true; pixels],
             active_count: pixels,
@@ -73,12 +78,14 @@ impl ProgressiveRender {
 
     pub fn set_scene(&mut self, scene: Arc<PreparedScene>) {
         self.scene = scene;
+        self.tiles = None;
         self.restart();
     }
 
     pub fn set_camera(&mut self, camera: Camera) {
         self.camera = camera;
         self.rays = camera.rays(self.settings.width, self.settings.height);
+        self.tiles = None;
         self.restart();
     }
 
@@ -95,10 +102,18 @@ impl ProgressiveRender {
         if self.is_converged() {
             return PassOutcome::Converged;
         }
+        // The tiles' build time counts as part of the pass that needs them.
+        let build_start = std::time::Instant::now();
+        if self.settings.first_hit_tiles && self.tiles.is_none() {
+            let (w, h) = (self.settings.width, self.settings.height);
+            self.tiles = Some(FirstHitTiles::new(&self.scene, &self.rays, w, h));
+        }
+        let build_seconds = build_start.elapsed().as_secs_f64();
         let active = self.settings.adaptive.map(|_| self.active.as_slice());
-        let Some(stats) = render_pass(
+        let Some(mut stats) = render_pass(
             &self.scene,
             &self.rays,
+            self.tiles.as_ref(),
             &self.sampler,
             self.passes_done,
             &self.settings,
@@ -109,6 +124,7 @@ impl ProgressiveRender {
             self.dirty = true;
             return PassOutcome::Cancelled;
         };
+        stats.seconds += build_seconds;
         self.passes_done += 1;
         self.rays_traced += stats.rays;
         self.seconds += stats.seconds;

@@ -18,6 +18,9 @@ pub struct RenderSettings {
     pub min_weight: f32,
     pub adaptive: Option<AdaptiveSettings>,
     pub self_intersection: SelfIntersection,
+    /// Primary rays look up what they can hit first by tile (first_hit.rs) instead of
+    /// traversing the BVH; off draws the same image the slow way, for comparison.
+    pub first_hit_tiles: bool,
 }
 
 /// Stop refining a pixel once its subsamples agree.
@@ -58,6 +61,7 @@ impl RenderSettings {
             min_weight: DEFAULT_MIN_WEIGHT,
             adaptive: None,
             self_intersection: SelfIntersection::ErrorBound,
+            first_hit_tiles: true,
         }
     }
 

@@ -2,6 +2,7 @@
 //! object shading data, and what work the scene can skip.
 
 use super::description::{Scene, ShapeDesc};
+use crate::first_hit::Candidate;
 use crate::geometry::{Aabb, Bvh, Cylinder, RayQuery, Shape, ShapeHit, Sphere, Triangle};
 use crate::light::PointLight;
 use crate::material::Material;
@@ -162,6 +163,30 @@ impl PreparedScene {
             best = Some((hit, i));
             Some(hit.t)
         });
+        best
+    }
+
+    /// The nearest hit among `candidates`, which hold every primitive the ray can reach,
+    /// sorted by a lower bound of the distance at which it can hit them (first_hit.rs): the
+    /// same answer as `intersect(q, 0, ∞)`.
+    #[inline]
+    pub fn intersect_among(
+        &self,
+        q: &RayQuery,
+        candidates: &[Candidate],
+    ) -> Option<(ShapeHit, u32)> {
+        let mut best: Option<(ShapeHit, u32)> = None;
+        let mut t_max = f32::INFINITY;
+        for c in candidates {
+            if c.min_t >= t_max {
+                break; // this box and every later one start beyond the nearest hit
+            }
+            let shape = &self.primitives[c.primitive as usize].shape;
+            if let Some(hit) = shape.intersect_after(q, 0.0, t_max) {
+                t_max = hit.t;
+                best = Some((hit, c.primitive));
+            }
+        }
         best
     }
 

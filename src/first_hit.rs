@@ -1,0 +1,381 @@
+//! What a primary ray can hit first, looked up by where it crosses the image.
+//!
+//! Every primary ray leaves the eye, so the primitives it can meet are known before it is
+//! traced: those whose bounding box, seen from the eye, covers its pixel. This is the item
+//! buffer of Weghorst, Hooper and Greenberg (1984) at the granularity of 8×8-pixel tiles. A
+//! tile's list is sorted by the distance from the eye to each box, so the search stops at
+//! the first box that lies beyond the nearest hit so far; a tile that no box covers is
+//! background without a single test. On the seed scene this replaces the BVH traversal of
+//! every primary ray (docs/benchmarks/README.md). Tiles that too many boxes cover fall
+//! back to the BVH, which then does better.
+
+use crate::camera::CameraRays;
+use crate::scene::PreparedScene;
+use glam::DVec3;
+
+/// Tile side, in pixels.
+pub const TILE: u32 = 8;
+
+/// A tile covered by more boxes than this is left to the BVH.
+pub const MAX_CANDIDATES: usize = 12;
+
+/// Image positions are projected in f64 and each box's extent is widened by this many
+/// pixels, far more than the f32 rounding of a camera ray (about 10⁻⁶ of the field of
+/// view), so no subsample position in a pixel can reach a box that was not listed.
+const MARGIN_PIXELS: f64 = 1.0;
+
+/// A box corner this close to the eye's plane (as a fraction of its distance from the
+/// eye) projects unstably; a box with one counts as covering the whole image.
+const NEAR_PLANE: f64 = 1e-3;
+
+/// One primitive that primary rays through a tile may hit.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Candidate {
+    /// Index into `PreparedScene::primitives`.
+    pub primitive: u32,
+    /// No hit on the primitive lies nearer to the eye than this, along a unit direction:
+    /// the distance from the eye to its box, rounded down by a relative 10⁻⁴ to cover the
+    /// rounding of a computed hit distance.
+    pub min_t: f32,
+}
+
+/// For each tile of an image, the primitives a primary ray through it may hit first,
+/// nearest box first.
+#[derive(Clone, Debug)]
+pub struct FirstHitTiles {
+    tiles_x: u32,
+    tiles_y: u32,
+    /// Tile i's candidates are `candidates[start[i]..start[i + 1]]`.
+    start: Vec<u32>,
+    candidates: Vec<Candidate>,
+    /// Tiles covered by more than `MAX_CANDIDATES` boxes, left to the BVH.
+    crowded: Vec<bool>,
+}
+
+impl FirstHitTiles {
+    /// The lists for an image of `width` × `height` pixels seen through `rays`.
+    pub fn new(scene: &PreparedScene, rays: &CameraRays, width: u32, height: u32) -> Self {
+        let tiles_x = width.div_ceil(TILE);
+        let tiles_y = height.div_ceil(TILE);
+        let tile_count = tiles_x as usize * tiles_y as usize;
+        let eye = rays.eye().as_dvec3();
+        let forward = rays.forward().as_dvec3();
+
+        // Each primitive's tile rectangle (inclusive), or None when no primary ray can
+        // reach it.
+        let mut per_tile: Vec<Vec<Candidate>> = vec![Vec::new(); tile_count];
+        for (index, primitive) in scene.primitives.iter().enumerate() {
+            let bounds = primitive.shape.bounds();
+            let (lo, hi) = (bounds.min.as_dvec3(), bounds.max.as_dvec3());
+            let whole_image = (0, 0, tiles_x - 1, tiles_y - 1);
+            let rectangle = if !(lo.is_finite() && hi.is_finite()) {
+                Some(whole_image)
+            } else {
+                tile_rectangle(lo, hi, eye, forward, rays, width, height)
+            };
+            let Some((x0, y0, x1, y1)) = rectangle else {
+                continue;
+            };
+            let candidate = Candidate {
+                primitive: index as u32,
+                min_t: lower_bound_distance(eye, lo, hi),
+            };
+            for ty in y0..=y1 {
+                for tx in x0..=x1 {
+                    per_tile[(ty * tiles_x + tx) as usize].push(candidate);
+                }
+            }
+        }
+
+        let mut start = Vec::with_capacity(tile_count + 1);
+        let mut candidates = Vec::new();
+        let mut crowded = vec![false; tile_count];
+        start.push(0);
+        for (tile, mut list) in per_tile.into_iter().enumerate() {
+            if list.len() > MAX_CANDIDATES {
+                crowded[tile] = true;
+            } else {
+                // Stable, so equal distances keep the primitives' order.
+                list.sort_by(|a, b| a.min_t.total_cmp(&b.min_t));
+                candidates.extend_from_slice(&list);
+            }
+            start.push(candidates.len() as u32);
+        }
+        Self {
+            tiles_x,
+            tiles_y,
+            start,
+            candidates,
+            crowded,
+        }
+    }
+
+    /// The candidates for pixel (x, y), nearest box first; None when the tile is left to
+    /// the BVH.
+    #[inline]
+    pub fn at(&self, x: u32, y: u32) -> Option<&[Candidate]> {
+        let (tx, ty) = (x / TILE, y / TILE);
+        debug_assert!(tx < self.tiles_x && ty < self.tiles_y);
+        let tile = (ty * self.tiles_x + tx) as usize;
+        if self.crowded[tile] {
+            return None;
+        }
+        Some(&self.candidates[self.start[tile] as usize..self.start[tile + 1] as usize])
+    }
+
+    /// How many tiles there are, and how many are empty, listed and left to the BVH.
+    pub fn census(&self) -> TileCensus {
+        let mut census = TileCensus::default();
+        for tile in 0..self.crowded.len() {
+            census.tiles += 1;
+            if self.crowded[tile] {
+                census.crowded += 1;
+            } else if self.start[tile] == self.start[tile + 1] {
+                census.empty += 1;
+            }
+        }
+        census
+    }
+}
+
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct TileCensus {
+    pub tiles: usize,
+    pub empty: usize,
+    pub crowded: usize,
+}
+
+/// The inclusive tile rectangle that the box lo..hi covers as seen from the eye, or None
+/// when the whole box lies behind the eye.
+fn tile_rectangle(
+    lo: DVec3,
+    hi: DVec3,
+    eye: DVec3,
+    forward: DVec3,
+    rays: &CameraRays,
+    width: u32,
+    height: u32,
+) -> Option<(u32, u32, u32, u32)> {
+    let tiles_x = width.div_ceil(TILE);
+    let tiles_y = height.div_ceil(TILE);
+    let corners = (0..8).map(|i| {
+        DVec3::new(
+            if i & 1 == 0 { lo.x } else { hi.x },
+            if i & 2 == 0 { lo.y } else { hi.y },
+            if i & 4 == 0 { lo.z } else { hi.z },
+        )
+    });
+    // A primary ray only moves forward (its direction has a positive component along the
+    // view axis), so a box wholly behind the eye's plane is never hit.
+    let mut behind = 0;
+    let (mut x_min, mut y_min) = (f64::INFINITY, f64::INFINITY);
+    let (mut x_max, mut y_max) = (f64::NEG_INFINITY, f64::NEG_INFINITY);
+    for corner in corners {
+        let v = corner - eye;
+        let depth = v.dot(forward);
+        if depth < 0.0 {
+            behind += 1;
+        }
+        let projected = if depth > NEAR_PLANE * v.length() {
+            rays.project(corner, width, height)
+        } else {
+            None
+        };
+        let Some((x, y)) = projected else {
+            x_min = f64::NEG_INFINITY;
+            x_max = f64::INFINITY;
+            y_min = f64::NEG_INFINITY;
+            y_max = f64::INFINITY;
+            continue;
+        };
+        x_min = x_min.min(x);
+        x_max = x_max.max(x);
+        y_min = y_min.min(y);
+        y_max = y_max.max(y);
+    }
+    if behind == 8 {
+        return None;
+    }
+    // Pixel p holds subsample positions in [p, p + 1).
+    let tile_of = |position: f64, tiles: u32| -> Option<u32> {
+        let pixel = position.floor();
+        if pixel < 0.0 {
+            return Some(0);
+        }
+        let tile = (pixel / TILE as f64).floor();
+        (tile < tiles as f64).then_some(tile as u32)
+    };
+    let x0 = tile_of(x_min - MARGIN_PIXELS, tiles_x)?;
+    let y0 = tile_of(y_min - MARGIN_PIXELS, tiles_y)?;
+    let x1 = tile_of(x_max + MARGIN_PIXELS, tiles_x).unwrap_or(tiles_x - 1);
+    let y1 = tile_of(y_max + MARGIN_PIXELS, tiles_y).unwrap_or(tiles_y - 1);
+    // A box wholly left of or above the image gives a rectangle that ends before tile 0.
+    if x_max + MARGIN_PIXELS < 0.0 || y_max + MARGIN_PIXELS < 0.0 {
+        return None;
+    }
+    Some((x0, y0, x1, y1))
+}
+
+/// The distance from `eye` to the box lo..hi, rounded down so that no computed hit
+/// distance on a primitive inside the box is smaller.
+fn lower_bound_distance(eye: DVec3, lo: DVec3, hi: DVec3) -> f32 {
+    let gap = (lo - eye).max(eye - hi).max(DVec3::ZERO);
+    let distance = gap.length() * (1.0 - 1e-4);
+    // f64 → f32 rounds to nearest; step down once more if that rounded up.
+    let d = distance as f32;
+    if d as f64 > distance {
+        d.next_down()
+    } else {
+        d
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::camera::Camera;
+    use crate::geometry::RayQuery;
+    use crate::scene::{PreparedScene, load_scene};
+    use glam::Vec3;
+
+    fn seed() -> (PreparedScene, Camera) {
+        let scene = load_scene(&crate::seed_scene_path()).unwrap();
+        (PreparedScene::new(&scene), scene.camera)
+    }
+
+    /// For subsample positions all over every pixel (corners included), the candidates give
+    /// exactly the BVH's nearest hit: the same primitive at the same distance, or none.
+    fn assert_matches_bvh(scene: &PreparedScene, camera: Camera, width: u32, height: u32) {
+        let rays = camera.rays(width, height);
+        let tiles = FirstHitTiles::new(scene, &rays, width, height);
+        let offsets = [0.0, 0.5, 0.999_999, 0.25];
+        let mut hits = 0;
+        for y in 0..height {
+            for x in 0..width {
+                let Some(candidates) = tiles.at(x, y) else {
+                    continue;
+                };
+                for (i, &dx) in offsets.iter().enumerate() {
+                    let dy = offsets[(i + 1) % offsets.len()];
+                    let q = RayQuery::new(rays.ray(x as f32 + dx, y as f32 + dy));
+                    let expected = scene.intersect(&q, 0.0, f32::INFINITY);
+                    let found = scene.intersect_among(&q, candidates);
+                    let key =
+                        |h: Option<(crate::geometry::ShapeHit, u32)>| h.map(|(h, i)| (h.t, i));
+                    assert_eq!(key(found), key(expected), "pixel ({x}, {y}) + ({dx}, {dy})");
+                    hits += expected.is_some() as u32;
+                }
+            }
+        }
+        assert!(
+            hits > 0,
+            "the view must see something for the test to mean anything"
+        );
+    }
+
+    #[test]
+    fn the_seed_view_finds_every_nearest_hit_the_bvh_finds() {
+        let (scene, camera) = seed();
+        assert_matches_bvh(&scene, camera, 200, 150);
+        // Sizes that are not multiples of the tile side leave partial tiles at the edges.
+        assert_matches_bvh(&scene, camera, 203, 77);
+    }
+
+    #[test]
+    fn views_from_inside_and_around_the_objects_find_the_same_hits() {
+        let (scene, seed_camera) = seed();
+        let views = [
+            // Inside the mirror sphere's box, looking at the others.
+            (
+                Vec3::new(-5.0, 0.0, -100.0),
+                Vec3::new(1.0, -0.2, 1.0),
+                60.0,
+            ),
+            // On the floor, among the objects: boxes straddle the eye's plane.
+            (
+                Vec3::new(0.0, -14.0, -66.0),
+                Vec3::new(-1.0, 0.1, -0.3),
+                90.0,
+            ),
+            // From behind, looking back at the seed camera: every box behind it is culled.
+            (Vec3::new(0.0, 5.0, -230.0), Vec3::new(0.0, -0.1, 1.0), 40.0),
+            // Steeply down from above, wide.
+            (
+                Vec3::new(0.0, 60.0, -80.0),
+                Vec3::new(0.3, -1.0, 0.0),
+                120.0,
+            ),
+        ];
+        for (eye, dir, fov) in views {
+            let camera = Camera::looking_along(eye, dir, fov).unwrap();
+            assert_ne!(camera, seed_camera);
+            assert_matches_bvh(&scene, camera, 96, 64);
+        }
+    }
+
+    #[test]
+    fn the_seed_view_is_mostly_cheap_tiles() {
+        let (scene, camera) = seed();
+        let tiles = FirstHitTiles::new(&scene, &camera.rays(800, 600), 800, 600);
+        let census = tiles.census();
+        assert_eq!(census.tiles, 100 * 75);
+        assert_eq!(census.crowded, 0);
+        // The black sky above the objects: about a third of the image.
+        assert!(census.empty > census.tiles / 4, "{census:?}");
+        // The floor lies under every tile below the horizon, and the mirror sphere's tiles
+        // list it after the floor only where the floor's box is nearer.
+        let bottom = tiles.at(400, 599).unwrap();
+        assert!(!bottom.is_empty());
+        assert!(bottom.windows(2).all(|w| w[0].min_t <= w[1].min_t));
+    }
+
+    #[test]
+    fn boxes_behind_the_eye_are_in_no_tile_and_crowds_go_to_the_bvh() {
+        use crate::scene::{Scene, SceneObject, ShapeDesc};
+        let (_, camera) = seed();
+        let template = load_scene(&crate::seed_scene_path()).unwrap();
+        let material = template.objects[0].material.clone();
+        let sphere = |center: Vec3| SceneObject {
+            name: "s".into(),
+            shape: ShapeDesc::Sphere {
+                center,
+                radius: 1.0,
+            },
+            material: material.clone(),
+        };
+        // The seed camera looks down −z from the origin.
+        let mut objects = vec![sphere(Vec3::new(0.0, 0.0, 10.0))];
+        objects.extend((0..20).map(|i| sphere(Vec3::new(0.0, 0.0, -20.0 - i as f32))));
+        let scene = PreparedScene::new(&Scene {
+            objects,
+            ..template
+        });
+        let tiles = FirstHitTiles::new(&scene, &camera.rays(160, 120), 160, 120);
+        let behind = scene
+            .primitives
+            .iter()
+            .position(|p| p.shape.bounds().min.z > 0.0)
+            .unwrap() as u32;
+        for y in 0..120 {
+            for x in 0..160 {
+                if let Some(list) = tiles.at(x, y) {
+                    assert!(list.iter().all(|c| c.primitive != behind));
+                }
+            }
+        }
+        // Twenty spheres one behind the other cover the centre: left to the BVH.
+        assert!(tiles.at(80, 60).is_none());
+        assert!(tiles.census().crowded > 0);
+        assert_matches_bvh(&scene, camera, 160, 120);
+    }
+
+    #[test]
+    fn lower_bound_distance_never_exceeds_the_true_distance() {
+        let eye = DVec3::new(0.1, 0.2, 0.3);
+        let (lo, hi) = (DVec3::new(1.0, -1.0, -1.0), DVec3::new(2.0, 1.0, 1.0));
+        let d = lower_bound_distance(eye, lo, hi) as f64;
+        assert!(d <= 0.9 && d > 0.9 * (1.0 - 2e-4), "{d}");
+        // An eye inside the box: zero.
+        assert_eq!(lower_bound_distance(DVec3::new(1.5, 0.0, 0.0), lo, hi), 0.0);
+    }
+}
