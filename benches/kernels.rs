@@ -1,8 +1,10 @@
-//! Kernel timings: one intersection of each shape, a BVH query over many spheres, and one
-//! full Whitted path in the seed scene. `cargo bench --bench kernels`.
+//! Kernel timings: one intersection of each shape, a BVH query over many spheres, one
+//! full Whitted path in the seed scene, and a primary ray's first hit by BVH and by tile.
+//! `cargo bench --bench kernels`.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use glam::Vec3;
+use prism::first_hit::FirstHitTiles;
 use prism::geometry::{Aabb, Bvh, Cylinder, Ray, RayQuery, Sphere, Triangle};
 use prism::integrator::Integrator;
 use prism::scene::{PreparedScene, load_scene};
@@ -73,9 +75,30 @@ fn whitted_path(c: &mut Criterion) {
     });
 }
 
+fn first_hit(c: &mut Criterion) {
+    let scene = load_scene(&prism::seed_scene_path()).unwrap();
+    let prepared = PreparedScene::new(&scene);
+    let rays = scene.camera.rays(800, 600);
+    let tiles = FirstHitTiles::new(&prepared, &rays, 800, 600);
+    // A floor pixel between the objects, and a sky pixel above them.
+    for (name, x, y) in [("floor", 400, 560), ("sky", 400, 20)] {
+        let q = RayQuery::new(rays.ray(x as f32 + 0.5, y as f32 + 0.5));
+        let candidates = tiles.at(x, y).unwrap();
+        c.bench_function(&format!("primary ray, {name} pixel: BVH"), |b| {
+            b.iter(|| prepared.intersect(black_box(&q), 0.0, f32::INFINITY))
+        });
+        c.bench_function(&format!("primary ray, {name} pixel: first-hit tile"), |b| {
+            b.iter(|| prepared.intersect_among(black_box(&q), black_box(candidates)))
+        });
+    }
+    c.bench_function("first-hit tiles build, seed scene, 800x600", |b| {
+        b.iter(|| FirstHitTiles::new(&prepared, black_box(&rays), 800, 600))
+    });
+}
+
 criterion_group! {
     name = kernels;
     config = Criterion::default().sample_size(30).measurement_time(std::time::Duration::from_secs(2));
-    targets = shapes, bvh, whitted_path
+    targets = shapes, bvh, whitted_path, first_hit
 }
 criterion_main!(kernels);
