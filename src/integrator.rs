@@ -118,28 +118,34 @@ impl<'a> Integrator<'a> {
     /// The colour seen along a primary ray (unit direction), and its signature.
     #[inline]
     pub fn trace_primary(&mut self, ray: Ray) -> Sample {
-        self.counts.primary += 1;
-        self.signature = 0;
-        let color = self.trace(RayQuery::new(ray), 0.0, 0, 0, 1.0);
-        Sample {
-            color,
-            signature: self.signature,
-        }
+        self.primary(|this| this.trace(RayQuery::new(ray), 0.0, 0, 0, 1.0))
     }
 
     /// `trace_primary` for a ray that can only hit `candidates` first (first_hit.rs): the
     /// same colour and signature, found without traversing the BVH.
     #[inline]
     pub fn trace_primary_among(&mut self, ray: Ray, candidates: &[Candidate]) -> Sample {
+        self.primary(|this| {
+            let q = RayQuery::new(ray);
+            let found = this.scene.intersect_among(&q, candidates);
+            this.shade(found.map(|hit| (q, hit)), 0, 0, 1.0)
+        })
+    }
+
+    /// `trace_primary` for a ray known to hit nothing (an empty first-hit tile): the
+    /// background, with the signature of a miss, and no ray to build.
+    #[inline]
+    pub fn trace_primary_miss(&mut self) -> Sample {
+        self.primary(|this| this.shade(None, 0, 0, 1.0))
+    }
+
+    /// Counts one primary ray and returns the colour `trace` finds with the signature it
+    /// leaves.
+    #[inline]
+    fn primary(&mut self, trace: impl FnOnce(&mut Self) -> Vec3) -> Sample {
         self.counts.primary += 1;
         self.signature = 0;
-        let color = if candidates.is_empty() {
-            self.shade(None, 0, 0, 1.0)
-        } else {
-            let q = RayQuery::new(ray);
-            let found = self.scene.intersect_among(&q, candidates);
-            self.shade(found.map(|hit| (q, hit)), 0, 0, 1.0)
-        };
+        let color = trace(self);
         Sample {
             color,
             signature: self.signature,

@@ -56,11 +56,15 @@ pub fn render_pass(
                     continue;
                 }
                 let (x, y) = ((index % width) as u32, (index / width) as u32);
-                let (dx, dy) = sampler.offset(x, y, pass);
-                let ray = rays.ray(x as f32 + dx, y as f32 + dy);
+                let ray = || {
+                    let (dx, dy) = sampler.offset(x, y, pass);
+                    rays.ray(x as f32 + dx, y as f32 + dy)
+                };
+                // An empty tile needs neither a subsample position nor a ray.
                 let sample = match tiles.and_then(|t| t.at(x, y)) {
-                    Some(candidates) => integrator.trace_primary_among(ray, candidates),
-                    None => integrator.trace_primary(ray),
+                    Some([]) => integrator.trace_primary_miss(),
+                    Some(candidates) => integrator.trace_primary_among(ray(), candidates),
+                    None => integrator.trace_primary(ray()),
                 };
                 sum.add(
                     sample.color.clamp(glam::Vec3::ZERO, glam::Vec3::ONE),
