@@ -312,6 +312,16 @@ fn non_finite_and_extreme_numbers_are_rejected() {
     case.fails_with(GOOD, &["--width", "100000"], &["at most 16384"]);
     case.fails_with(GOOD, &["--adaptive", "--tolerance", "nan"], &["tolerance"]);
     case.fails_with(GOOD, &["--adaptive", "--tolerance", "-1"], &["tolerance"]);
+    case.fails_with(
+        GOOD,
+        &["--adaptive", "--edge-contrast", "-0.5"],
+        &["edge contrast"],
+    );
+    case.fails_with(
+        GOOD,
+        &["--adaptive", "--edge-contrast", "inf"],
+        &["edge contrast"],
+    );
 }
 
 /// `prism ARGS` with no display to open a window on.

@@ -117,16 +117,44 @@ fn adaptive_sampling_stops_flat_pixels_and_refines_edges() {
         "only {stopped_at_min} of {} pixels stopped at the minimum",
         counts.len()
     );
-    // Every pixel that an edge crosses (its subsamples' signatures differ) refined to at
-    // least the edge minimum, and some went on to the full grid.
+    // Every pixel that a strong edge crosses (its subsamples' signatures differ, and a
+    // neighbour is far brighter or darker) refined to at least the edge minimum, and some
+    // went on to the full grid. Faint edges may stop at the minimum.
     let pixels = &adaptive.accumulator().pixels;
-    let mixed: Vec<u32> = pixels.iter().filter(|p| p.mixed).map(|p| p.count).collect();
+    let (w, h) = (160usize, 120usize);
+    let contrast = |x: usize, y: usize| {
+        let p = pixels[y * w + x].mean();
+        let mut most = 0.0f32;
+        for ny in y.saturating_sub(1)..(y + 2).min(h) {
+            for nx in x.saturating_sub(1)..(x + 2).min(w) {
+                most = most.max((pixels[ny * w + nx].mean() - p).abs().max_element());
+            }
+        }
+        most
+    };
+    let mut strong = Vec::new();
+    let mut faint_stopped = 0;
+    for (i, p) in pixels.iter().enumerate() {
+        if !p.mixed {
+            continue;
+        }
+        let c = contrast(i % w, i / w);
+        if c > 0.25 {
+            strong.push(p.count);
+        } else if c < 0.5 * defaults.edge_contrast && p.count == defaults.min_samples {
+            faint_stopped += 1;
+        }
+    }
     assert!(
-        mixed.len() > 100,
-        "the seed scene has edges: {}",
-        mixed.len()
+        strong.len() > 100,
+        "the seed scene has strong edges: {}",
+        strong.len()
     );
-    assert!(mixed.iter().all(|&c| c >= defaults.edge_samples.min(16)));
+    assert!(strong.iter().all(|&c| c >= defaults.edge_samples.min(16)));
+    assert!(
+        faint_stopped > 0,
+        "no pixel on a faint edge stopped at the minimum"
+    );
     assert_eq!(*counts.iter().max().unwrap(), 16);
     // And the image stays close to the full render.
     let a = adaptive.accumulator().to_rgb8();

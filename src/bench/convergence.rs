@@ -25,6 +25,7 @@ pub struct Config {
     /// The adaptive strategy's minimum subsamples per pixel.
     pub min_samples: u32,
     pub edge_samples: u32,
+    pub edge_contrast: f32,
     pub out_dir: PathBuf,
     pub runs: usize,
 }
@@ -69,39 +70,6 @@ pub fn run(cfg: Config) -> Result<()> {
     let reference = reference(&scene_path, &prepared, scene.camera, &size)?;
     let reference_rgb8 = to_rgb8(&reference, size.width, size.height);
 
-    let mut points = Vec::new();
-    let mut rays = RayCounts::default();
-    let mut ray_seconds = 0.0;
-    let mut measure = |strategy: &str, settings: RenderSettings, every_pass: bool| {
-        let mut job = ProgressiveRender::new(prepared.clone(), scene.camera, settings);
-        let mut seconds = 0.0;
-        loop {
-            // The whole step: the pass and, for adaptive sampling, deciding which pixels stop.
-            let start = Instant::now();
-            let PassOutcome::Finished(stats) = job.step(&NEVER) else {
-                break;
-            };
-            seconds += start.elapsed().as_secs_f64();
-            rays += stats.rays;
-            ray_seconds += stats.seconds;
-            if every_pass || job.is_converged() {
-                let (rmse, flip) = errors(job.accumulator(), &reference, &reference_rgb8);
-                eprintln!(
-                    "{strategy:>24}: pass {:>2}, {:>7.3} s, RMSE {rmse:.5}, FLIP {flip:.5}",
-                    job.passes_done(),
-                    seconds
-                );
-                points.push(Point {
-                    strategy: strategy.to_string(),
-                    passes: job.passes_done(),
-                    samples_per_pixel: job.samples_per_pixel(),
-                    seconds,
-                    rmse,
-                    flip,
-                });
-            }
-        }
-    };
     let settings = |aa: u32, layout: SampleLayout, adaptive: Option<AdaptiveSettings>| {
         let mut s = RenderSettings::new(size.width, size.height, aa);
         s.layout = layout;
@@ -112,32 +80,98 @@ pub fn run(cfg: Config) -> Result<()> {
         tolerance: cfg.tolerance,
         min_samples: cfg.min_samples,
         edge_samples: cfg.edge_samples,
+        edge_contrast: cfg.edge_contrast,
     });
-    // (name, N, layout, adaptive, measured after every pass rather than once finished)
-    let mut strategies = vec![("seed 2×2 grid", 2, SampleLayout::Grid, None, false)];
+    // (name, settings, measured after every pass rather than once finished)
+    let mut strategies = vec![(
+        "seed 2×2 grid",
+        settings(2, SampleLayout::Grid, None),
+        false,
+    )];
     for n in [1, 2, 3, 4, 6, 8] {
-        strategies.push(("fixed N×N grid", n, SampleLayout::Grid, None, false));
+        strategies.push((
+            "fixed N×N grid",
+            settings(n, SampleLayout::Grid, None),
+            false,
+        ));
     }
     strategies.extend([
-        ("progressive", 8, SampleLayout::Stratified, None, true),
         (
-            "progressive, cell centres",
-            8,
-            SampleLayout::Grid,
-            None,
+            "progressive",
+            settings(8, SampleLayout::Stratified, None),
             true,
         ),
-        ("adaptive", 8, SampleLayout::Stratified, adaptive, true),
+        (
+            "progressive, cell centres",
+            settings(8, SampleLayout::Grid, None),
+            true,
+        ),
+        (
+            "adaptive",
+            settings(8, SampleLayout::Stratified, adaptive),
+            true,
+        ),
         (
             "adaptive, cell centres",
-            8,
-            SampleLayout::Grid,
-            adaptive,
+            settings(8, SampleLayout::Grid, adaptive),
             true,
         ),
     ]);
-    for (name, n, layout, adaptive, every_pass) in strategies {
-        measure(name, settings(n, layout, adaptive), every_pass);
+
+    // Time: each strategy's passes back to back with nothing in between, `runs` times,
+    // interleaved strategy by strategy so that a slow spell of the shared machine falls on
+    // all of them alike. Measuring the error between timed passes would evict the scene and
+    // the film from the cache and charge the next pass for it.
+    let mut rays = RayCounts::default();
+    let mut ray_seconds = 0.0;
+    let mut elapsed: Vec<Vec<Vec<f64>>> = vec![Vec::new(); strategies.len()];
+    for run in 0..cfg.runs {
+        eprintln!("timing run {} of {}", run + 1, cfg.runs);
+        for ((_, settings, _), runs) in strategies.iter().zip(&mut elapsed) {
+            let mut job = ProgressiveRender::new(prepared.clone(), scene.camera, *settings);
+            let mut seconds = 0.0;
+            let mut cumulative = Vec::new();
+            loop {
+                // The whole step: the pass and, for adaptive sampling, deciding which
+                // pixels stop.
+                let start = Instant::now();
+                let PassOutcome::Finished(stats) = job.step(&NEVER) else {
+                    break;
+                };
+                seconds += start.elapsed().as_secs_f64();
+                cumulative.push(seconds);
+                rays += stats.rays;
+                ray_seconds += stats.seconds;
+            }
+            runs.push(cumulative);
+        }
+    }
+    // Error: one untimed replay of each strategy. A render depends only on the scene, the
+    // settings and the pass index, so the replay's images are the timed runs' images.
+    let mut points = Vec::new();
+    for ((strategy, settings, every_pass), runs) in strategies.iter().zip(&elapsed) {
+        let mut job = ProgressiveRender::new(prepared.clone(), scene.camera, *settings);
+        while let PassOutcome::Finished(_) = job.step(&NEVER) {
+            if !(*every_pass || job.is_converged()) {
+                continue;
+            }
+            let pass = job.passes_done() as usize;
+            let mut times: Vec<f64> = runs.iter().map(|r| r[pass - 1]).collect();
+            times.sort_by(f64::total_cmp);
+            let seconds = times[times.len() / 2];
+            let (rmse, flip) = errors(job.accumulator(), &reference, &reference_rgb8);
+            eprintln!(
+                "{strategy:>26}: pass {pass:>2}, {seconds:>7.3} s, RMSE {rmse:.5}, FLIP {flip:.5}"
+            );
+            points.push(Point {
+                strategy: strategy.to_string(),
+                passes: job.passes_done(),
+                samples_per_pixel: job.samples_per_pixel(),
+                seconds,
+                rmse,
+                flip,
+            });
+        }
     }
 
     write_csv(&cfg.out_dir.join("convergence.csv"), &points)?;

@@ -36,6 +36,9 @@ pub enum BenchKind {
         /// Minimum subsamples of the adaptive strategies' pixels beside an edge.
         #[arg(long, default_value_t = prism::render::AdaptiveSettings::default().edge_samples)]
         edge_samples: u32,
+        /// Least contrast (0..1, any channel) of an edge the adaptive strategies search for.
+        #[arg(long, default_value_t = prism::render::AdaptiveSettings::default().edge_contrast)]
+        edge_contrast: f32,
     },
     /// Numerical accuracy tables (docs/numerics.md).
     Numerics {
@@ -55,6 +58,7 @@ pub fn run(args: BenchArgs) -> Result<()> {
             tolerance,
             min_samples,
             edge_samples,
+            edge_contrast,
         } => {
             let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
             let out_dir = out.unwrap_or_else(|| {
@@ -69,6 +73,7 @@ pub fn run(args: BenchArgs) -> Result<()> {
                 tolerance,
                 min_samples: min_samples.max(1),
                 edge_samples,
+                edge_contrast,
                 out_dir,
                 runs: if quick { runs.clamp(1, 3) } else { runs.max(1) },
             })

@@ -40,6 +40,9 @@ pub struct RenderArgs {
     /// Adaptive tolerance: estimated error of a pixel's mean luminance, 0..1 scale.
     #[arg(long, default_value_t = AdaptiveSettings::default().tolerance, allow_negative_numbers = true)]
     pub tolerance: f32,
+    /// Adaptive: least contrast (0..1, any channel) of an edge worth refining beside.
+    #[arg(long, default_value_t = AdaptiveSettings::default().edge_contrast, allow_negative_numbers = true)]
+    pub edge_contrast: f32,
     /// Trace every secondary ray, however faint (the unoptimised reference).
     #[arg(long)]
     pub exact: bool,
@@ -75,6 +78,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
     if args.adaptive {
         settings.adaptive = Some(AdaptiveSettings {
             tolerance: args.tolerance,
+            edge_contrast: args.edge_contrast,
             ..AdaptiveSettings::default()
         });
     }

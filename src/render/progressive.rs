@@ -1,7 +1,7 @@
 //! The progressive render: a state machine that adds one pass at a time, can be cancelled
 //! and restarted at any moment, and knows when it has converged.
 
-use super::accumulator::Accumulator;
+use super::accumulator::{Accumulator, PixelSum};
 use super::pass::{PassStats, render_pass};
 use super::settings::RenderSettings;
 use crate::camera::{Camera, CameraRays};
@@ -135,19 +135,22 @@ impl ProgressiveRender {
     /// Adaptive sampling. A pixel stops once it has its minimum samples and the estimated
     /// error of its mean luminance is within tolerance (`PixelSum::error_estimate`: the full
     /// mean against the mean of the first half, at power-of-two counts). Signatures find
-    /// edges that the estimate cannot see yet: a pixel whose own subsamples disagree (mixed),
-    /// or whose neighbour's signature differs from its own or is mixed, lies on or beside an
-    /// edge that its first few subsamples may have missed, and goes on to at least
-    /// `edge_samples`. A stopped pixel never restarts, so every active pixel holds exactly
+    /// edges that the estimate cannot see yet: a pixel beside an edge goes on to at least
+    /// `edge_samples`, since its first few subsamples may have missed the edge. The edge is
+    /// one between it and a neighbour when either of them is mixed (its own subsamples
+    /// disagree) or their signatures differ, and when their means differ by more than
+    /// `edge_contrast`. A stopped pixel never restarts, so every active pixel holds exactly
     /// subsamples 0 .. passes_done.
     fn update_active(&mut self) {
         let Some(adaptive) = self.settings.adaptive else {
             return;
         };
-        if self.passes_done < adaptive.min_samples {
+        // Only a power-of-two count has an error estimate, so only then can a pixel stop.
+        let n = self.passes_done;
+        if n < adaptive.min_samples || n < 2 || !n.is_power_of_two() {
             return;
         }
-        let near_edges_decided = self.passes_done >= adaptive.edge_samples;
+        let near_edges_decided = n >= adaptive.edge_samples;
         let (w, h) = (self.settings.width as usize, self.settings.height as usize);
         let pixels = &self.accumulator.pixels;
         let count: usize = self
@@ -164,12 +167,7 @@ impl ProgressiveRender {
                     let settled = p.error_estimate() <= adaptive.tolerance;
                     let beside_edge = settled
                         && !near_edges_decided
-                        && (y.saturating_sub(1)..(y + 2).min(h)).any(|ny| {
-                            (x.saturating_sub(1)..(x + 2).min(w)).any(|nx| {
-                                let n = &pixels[ny * w + nx];
-                                n.mixed || n.signature != p.signature
-                            })
-                        });
+                        && beside_edge(pixels, w, h, x, y, adaptive.edge_contrast);
                     *active = !settled || beside_edge;
                     count += *active as usize;
                 }
@@ -224,5 +222,87 @@ impl ProgressiveRender {
     /// Samples per pixel of the image as it stands (the mean over all pixels).
     pub fn samples_per_pixel(&self) -> f64 {
         self.accumulator.sample_count() as f64 / self.active.len().max(1) as f64
+    }
+}
+
+/// Whether pixel (x, y) and one of its eight neighbours lie on either side of an edge (see
+/// `ProgressiveRender::update_active`).
+fn beside_edge(pixels: &[PixelSum], w: usize, h: usize, x: usize, y: usize, contrast: f32) -> bool {
+    let p = &pixels[y * w + x];
+    let mut mean = None;
+    for ny in y.saturating_sub(1)..(y + 2).min(h) {
+        for nx in x.saturating_sub(1)..(x + 2).min(w) {
+            let q = &pixels[ny * w + nx];
+            let edge = p.mixed || q.mixed || q.signature != p.signature;
+            if edge && (nx, ny) != (x, y) {
+                let mean = *mean.get_or_insert_with(|| p.mean());
+                if (q.mean() - mean).abs().max_element() > contrast {
+                    return true;
+                }
+            }
+        }
+    }
+    false
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec3;
+
+    /// A 3×3 block of pixels, each with four subsamples of one colour and signature, the
+    /// centre one possibly mixed.
+    fn block(colors: [f32; 9], signatures: [u32; 9], centre_mixed: bool) -> Vec<PixelSum> {
+        let mut pixels: Vec<PixelSum> = colors
+            .iter()
+            .zip(signatures)
+            .map(|(&c, s)| {
+                let mut p = PixelSum::default();
+                for _ in 0..4 {
+                    p.add(Vec3::splat(c), s);
+                }
+                p
+            })
+            .collect();
+        pixels[4].mixed = centre_mixed;
+        pixels
+    }
+
+    #[test]
+    fn an_edge_needs_a_signature_change_and_contrast() {
+        let edge = |pixels: &[PixelSum], contrast| beside_edge(pixels, 3, 3, 1, 1, contrast);
+        // A neighbour on another surface, 0.5 brighter: an edge.
+        let strong = block(
+            [0.2, 0.2, 0.7, 0.2, 0.2, 0.2, 0.2, 0.2, 0.2],
+            [1, 1, 2, 1, 1, 1, 1, 1, 1],
+            false,
+        );
+        assert!(edge(&strong, 0.04));
+        assert!(!edge(&strong, 0.6), "fainter than asked for");
+        // Another surface of almost the same colour: nothing worth finding.
+        let faint = block(
+            [0.2, 0.2, 0.21, 0.2, 0.2, 0.2, 0.2, 0.2, 0.2],
+            [1, 1, 2, 1, 1, 1, 1, 1, 1],
+            false,
+        );
+        assert!(!edge(&faint, 0.04));
+        assert!(edge(&faint, 0.0), "zero contrast searches every edge");
+        // A texture gradient on one surface: contrast but no edge.
+        let gradient = block([0.1, 0.2, 0.3, 0.1, 0.2, 0.3, 0.1, 0.2, 0.3], [1; 9], false);
+        assert!(!edge(&gradient, 0.04));
+        // The centre pixel straddles an edge its neighbours show on one side.
+        assert!(edge(
+            &block([0.2, 0.2, 0.2, 0.2, 0.5, 0.2, 0.2, 0.2, 0.2], [1; 9], true),
+            0.04
+        ));
+        // A contrasting pixel two steps away is not a neighbour: corner (0, 0) of a 3×3
+        // image sees only its own 2×2 corner.
+        let far = block(
+            [0.2, 0.2, 0.2, 0.2, 0.2, 0.2, 0.2, 0.2, 0.9],
+            [1, 1, 1, 1, 1, 1, 1, 1, 2],
+            false,
+        );
+        assert!(!beside_edge(&far, 3, 3, 0, 0, 0.04));
+        assert!(beside_edge(&far, 3, 3, 1, 1, 0.04));
     }
 }

@@ -34,6 +34,9 @@ pub struct AdaptiveSettings {
     /// A pixel beside an edge (a neighbour met other surfaces, shadows or pattern cells)
     /// gets at least this many, so that an edge its first few subsamples missed is found.
     pub edge_samples: u32,
+    /// An edge counts only where the pixels on either side of it differ by more than this
+    /// in some channel (0..1 scale): a faint edge cannot hide enough to be worth the search.
+    pub edge_contrast: f32,
 }
 
 impl Default for AdaptiveSettings {
@@ -44,6 +47,7 @@ impl Default for AdaptiveSettings {
             tolerance: 1.0 / 256.0,
             min_samples: 4,
             edge_samples: 8,
+            edge_contrast: 0.04,
         }
     }
 }
@@ -96,6 +100,9 @@ impl RenderSettings {
             if a.min_samples == 0 {
                 return Err(SettingsError::MinSamples);
             }
+            if !(a.edge_contrast.is_finite() && a.edge_contrast >= 0.0) {
+                return Err(SettingsError::EdgeContrast(a.edge_contrast));
+            }
         }
         Ok(())
     }
@@ -121,4 +128,6 @@ pub enum SettingsError {
     Epsilon(f32),
     #[error("adaptive minimum samples must be at least 1")]
     MinSamples,
+    #[error("adaptive edge contrast {0}: must be a finite number ≥ 0")]
+    EdgeContrast(f32),
 }
