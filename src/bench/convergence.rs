@@ -24,7 +24,9 @@ pub struct Config {
     pub tolerance: f32,
     /// The adaptive strategy's minimum subsamples per pixel.
     pub min_samples: u32,
+    /// The adaptive strategies' minimum subsamples beside an edge.
     pub edge_samples: u32,
+    /// The adaptive strategies' least contrast of an edge worth refining beside.
     pub edge_contrast: f32,
     pub out_dir: PathBuf,
     pub runs: usize,
