@@ -57,7 +57,7 @@ impl Shape {
     }
 
     /// The nearest hit with t in (t_min, t_max).
-    #[inline]
+    #[inline(always)]
     pub fn intersect_after(&self, q: &RayQuery, t_min: f32, t_max: f32) -> Option<ShapeHit> {
         match self {
             Shape::Sphere(s) => s.intersect_after(&q.ray, t_min, t_max).map(|t| ShapeHit {
@@ -88,6 +88,7 @@ impl Shape {
         }
     }
 
+    #[inline]
     pub fn surface(&self, q: &RayQuery, hit: &ShapeHit) -> SurfacePoint {
         match (self, hit.detail) {
             (Shape::Sphere(s), _) => {
