@@ -322,6 +322,9 @@ fn non_finite_and_extreme_numbers_are_rejected() {
         &["--adaptive", "--edge-contrast", "inf"],
         &["edge contrast"],
     );
+    // Adaptive settings without --adaptive would be silently ignored: refuse them.
+    case.fails_with(GOOD, &["--edge-contrast", "0.1"], &["--adaptive"]);
+    case.fails_with(GOOD, &["--tolerance", "0.01"], &["--adaptive"]);
 }
 
 /// `prism ARGS` with no display to open a window on.

@@ -38,10 +38,10 @@ pub struct RenderArgs {
     #[arg(long)]
     pub adaptive: bool,
     /// Adaptive tolerance: estimated error of a pixel's mean luminance, 0..1 scale.
-    #[arg(long, default_value_t = AdaptiveSettings::default().tolerance, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = AdaptiveSettings::default().tolerance, allow_negative_numbers = true, requires = "adaptive")]
     pub tolerance: f32,
     /// Adaptive: least contrast (0..1, any channel) of an edge worth refining beside.
-    #[arg(long, default_value_t = AdaptiveSettings::default().edge_contrast, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = AdaptiveSettings::default().edge_contrast, allow_negative_numbers = true, requires = "adaptive")]
     pub edge_contrast: f32,
     /// Trace every secondary ray, however faint (the unoptimised reference).
     #[arg(long)]
