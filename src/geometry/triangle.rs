@@ -87,6 +87,22 @@ impl Triangle {
         if t <= t_min || t >= t_max || t.is_nan() {
             return None;
         }
+        // A t this close to 0 may be rounding of a triangle the ray starts on or beside (a
+        // shadow ray leaving a floor, say): only a t beyond its error bound is a hit
+        // (pbrt-v4, section 6.5.3).
+        let max_x = largest_magnitude(ax, bx, cx);
+        let max_y = largest_magnitude(ay, by, cy);
+        let max_z = largest_magnitude(az, bz, cz);
+        let delta_x = gamma(5) * (max_x + max_z);
+        let delta_y = gamma(5) * (max_y + max_z);
+        let delta_z = gamma(3) * max_z;
+        let delta_e = 2.0 * (gamma(2) * max_x * max_y + delta_y * max_x + delta_x * max_y);
+        let max_e = largest_magnitude(u, v, w);
+        let delta_t =
+            3.0 * (gamma(3) * max_e * max_z + delta_e * max_z + delta_z * max_e) * inv_det.abs();
+        if t <= delta_t {
+            return None;
+        }
         Some(TriangleHit {
             t,
             b: [u * inv_det, v * inv_det, w * inv_det],
@@ -111,6 +127,15 @@ impl Triangle {
     }
 }
 
+/// max(|a|, |b|, |c|) for finite values, in plain comparisons (`f32::max` also orders NaN,
+/// which costs instructions and cannot occur here).
+#[inline(always)]
+fn largest_magnitude(a: f32, b: f32, c: f32) -> f32 {
+    let (a, b, c) = (a.abs(), b.abs(), c.abs());
+    let ab = if a > b { a } else { b };
+    if ab > c { ab } else { c }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -127,6 +152,34 @@ mod tests {
 
     fn query(origin: Vec3, dir: Vec3) -> RayQuery {
         RayQuery::new(Ray::new(origin, dir))
+    }
+
+    #[test]
+    fn a_ray_leaving_just_above_a_large_triangle_does_not_hit_it() {
+        // A shadow ray from a point of the seed's floor (80 × 160 units, two triangles),
+        // offset above it by the hit point's error bound, towards the light: the computed
+        // t of the plane it leaves is rounding, a few ulps either side of 0.
+        let (a, b, c, d) = (
+            Vec3::new(-40.0, -15.0, -40.0),
+            Vec3::new(40.0, -15.0, -40.0),
+            Vec3::new(40.0, -15.0, -200.0),
+            Vec3::new(-40.0, -15.0, -200.0),
+        );
+        let floor = [
+            Triangle::new(a, b, c).unwrap(),
+            Triangle::new(a, c, d).unwrap(),
+        ];
+        let light = Vec3::new(10.0, 40.0, -3.0);
+        for origin in [
+            Vec3::new(-37.22461, -14.999994, -118.25191),
+            Vec3::new(-32.48696, -14.999994, -103.73628),
+            Vec3::new(-19.969675, -14.999994, -81.29124),
+        ] {
+            let q = query(origin, light - origin);
+            for t in &floor {
+                assert_eq!(t.intersect(&q, 1.0), None, "from {origin}");
+            }
+        }
     }
 
     #[test]
