@@ -82,6 +82,9 @@ pub struct Integrator<'a> {
     /// 0 traces everything (the reference); 1/512 cannot change an 8-bit pixel by more than
     /// rounding.
     min_weight: f32,
+    /// Shadow rays look up what they may meet in each light's buffer (light_buffer.rs)
+    /// instead of traversing the BVH.
+    light_buffer: bool,
     pub counts: RayCounts,
     /// The signature of the primary ray being traced.
     signature: u32,
@@ -93,6 +96,7 @@ impl<'a> Integrator<'a> {
             scene,
             self_intersection: SelfIntersection::default(),
             min_weight,
+            light_buffer: true,
             counts: RayCounts::default(),
             signature: 0,
         }
@@ -100,6 +104,11 @@ impl<'a> Integrator<'a> {
 
     pub fn with_self_intersection(mut self, policy: SelfIntersection) -> Self {
         self.self_intersection = policy;
+        self
+    }
+
+    pub fn with_light_buffer(mut self, on: bool) -> Self {
+        self.light_buffer = on;
         self
     }
 
@@ -203,7 +212,7 @@ impl<'a> Integrator<'a> {
             }
             let mut diffuse = base * scene.ambient * material.ambient;
             let mut specular = Vec3::ZERO;
-            for light in &scene.lights {
+            for (light_index, light) in scene.lights.iter().enumerate() {
                 let to_light = light.position - p;
                 let n_dot = n.dot(to_light);
                 if n_dot <= 0.0 {
@@ -213,9 +222,8 @@ impl<'a> Integrator<'a> {
                 let l = to_light / distance;
                 let origin = self.leave(&surface, n, l);
                 self.counts.shadow += 1;
-                // The shadow ray ends exactly at the light: t = 1 on (light − origin).
-                let shadow = RayQuery::new(Ray::new(origin, light.position - origin));
-                let visible = scene.transmittance(&shadow, 1.0);
+                let leaving = (entering || object.flat).then_some(prim.object);
+                let visible = scene.light_reaching(light_index, origin, leaving, self.light_buffer);
                 let shadow_class = if visible == Vec3::ZERO {
                     0
                 } else if visible == Vec3::ONE {

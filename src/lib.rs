@@ -9,6 +9,7 @@ pub mod first_hit;
 pub mod geometry;
 pub mod integrator;
 pub mod light;
+pub mod light_buffer;
 pub mod material;
 pub mod numerics;
 pub mod render;

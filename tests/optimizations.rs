@@ -96,3 +96,68 @@ fn first_hit_tiles_draw_the_image_the_bvh_draws() {
         );
     }
 }
+
+#[test]
+fn light_buffers_draw_the_image_the_bvh_draws() {
+    // Shadow rays that look up what they may meet by their direction from the light
+    // (light_buffer.rs) must see what a traversal of the BVH sees: for the seed's light;
+    // for a second light among the objects, whose boxes straddle its cube's planes; and
+    // with a cloud of glass beads over the scene that crowds cells past the list limit
+    // and tints shadows through several surfaces.
+    use glam::Vec3;
+    use prism::light::PointLight;
+    use prism::light_buffer::MAX_OCCLUDERS;
+    use prism::material::Material;
+    use prism::scene::{SceneObject, ShapeDesc};
+    use prism::texture::Texture;
+
+    let seed = seed();
+    let mut among = seed.clone();
+    among.lights.push(PointLight {
+        position: Vec3::new(0.0, -5.0, -70.0),
+        color: Vec3::new(0.5, 0.4, 0.3),
+    });
+    let mut beads = seed.clone();
+    for i in 0..60 {
+        let a = i as f32 * 0.7;
+        beads.objects.push(SceneObject {
+            name: format!("bead {i}"),
+            shape: ShapeDesc::Sphere {
+                center: Vec3::new(
+                    2.0 + 3.0 * a.cos(),
+                    12.0 + (i % 5) as f32,
+                    -60.0 + 3.0 * a.sin(),
+                ),
+                radius: 0.8,
+            },
+            material: Material {
+                texture: Texture::Solid(Vec3::new(0.9, 0.5, 0.2)),
+                transparency: 0.6,
+                ..Material::default()
+            },
+        });
+    }
+    for (name, scene) in [("seed", seed), ("among", among), ("beads", beads)] {
+        let prepared = PreparedScene::new(&scene);
+        let census = prepared.light_buffers[0].census();
+        assert!(census.empty > 0, "{name}: {census:?}");
+        if name == "beads" {
+            assert!(
+                census.crowded > 0,
+                "more than {MAX_OCCLUDERS} beads share a cell"
+            );
+        }
+        let prepared = Arc::new(prepared);
+        let lists = RenderSettings::new(200, 150, 1);
+        assert!(lists.light_buffer);
+        let traversal = RenderSettings {
+            light_buffer: false,
+            ..lists
+        };
+        assert_eq!(
+            image(prepared.clone(), scene.camera, lists),
+            image(prepared, scene.camera, traversal),
+            "{name}"
+        );
+    }
+}

@@ -440,7 +440,8 @@ fn headline(
     writeln!(
         md,
         "\n## What each shortcut buys (one pass, {w}×{h}, median)\n\n\
-         Each row turns one shortcut off. The tiles and the BVH leave the image unchanged; \
+         Each row turns one shortcut off. The tiles, the light buffer and the BVH leave the \
+         image unchanged; \
          the faint-ray cutoff moves no pixel by more than one 8-bit level \
          (`tests/optimizations.rs`).\n"
     )?;
@@ -450,13 +451,21 @@ fn headline(
     if let Some(bounds) = flat.bvh.bounds {
         flat.bvh = prism::geometry::Bvh::single_leaf(bounds, flat.primitives.len() as u32);
     }
-    let rows: [(&str, Arc<PreparedScene>, RenderSettings); 4] = [
+    let rows: [(&str, Arc<PreparedScene>, RenderSettings); 5] = [
         ("nothing", prepared.clone(), all_on),
         (
             "first-hit tiles (primary rays traverse the BVH)",
             prepared.clone(),
             RenderSettings {
                 first_hit_tiles: false,
+                ..all_on
+            },
+        ),
+        (
+            "light buffer (shadow rays traverse the BVH)",
+            prepared.clone(),
+            RenderSettings {
+                light_buffer: false,
                 ..all_on
             },
         ),

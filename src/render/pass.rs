@@ -48,7 +48,8 @@ pub fn render_pass(
                 return None;
             }
             let mut integrator = Integrator::new(scene, settings.min_weight)
-                .with_self_intersection(settings.self_intersection);
+                .with_self_intersection(settings.self_intersection)
+                .with_light_buffer(settings.light_buffer);
             let mut traced = 0u64;
             for (i, sum) in pixels.iter_mut().enumerate() {
                 let index = band_index * band + i;

@@ -21,6 +21,10 @@ pub struct RenderSettings {
     /// Primary rays look up what they can hit first by tile (first_hit.rs) instead of
     /// traversing the BVH; off draws the same image the slow way, for comparison.
     pub first_hit_tiles: bool,
+    /// Shadow rays look up what they may meet by their direction from the light
+    /// (light_buffer.rs) instead of traversing the BVH; off draws the same image the slow
+    /// way, for comparison.
+    pub light_buffer: bool,
 }
 
 /// Stop refining a pixel once its subsamples agree.
@@ -66,6 +70,7 @@ impl RenderSettings {
             adaptive: None,
             self_intersection: SelfIntersection::ErrorBound,
             first_hit_tiles: true,
+            light_buffer: true,
         }
     }
 

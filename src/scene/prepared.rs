@@ -3,8 +3,9 @@
 
 use super::description::{Scene, ShapeDesc};
 use crate::first_hit::Candidate;
-use crate::geometry::{Aabb, Bvh, Cylinder, RayQuery, Shape, ShapeHit, Sphere, Triangle};
+use crate::geometry::{Aabb, Bvh, Cylinder, Ray, RayQuery, Shape, ShapeHit, Sphere, Triangle};
 use crate::light::PointLight;
+use crate::light_buffer::LightBuffer;
 use crate::material::Material;
 use glam::Vec3;
 
@@ -27,6 +28,8 @@ pub struct ObjectData {
     pub planar_uv: Option<PlanarUv>,
     /// What one crossing of this object's surface lets through to a shadow ray.
     pub shadow_filter: Vec3,
+    /// A polygon or triangle: no inside, so both its sides face out.
+    pub flat: bool,
 }
 
 #[derive(Clone, Copy, Debug)]
@@ -67,6 +70,8 @@ pub struct PreparedScene {
     pub bvh: Bvh,
     pub objects: Vec<ObjectData>,
     pub lights: Vec<PointLight>,
+    /// For each light, what a shadow ray toward it may meet, by direction (light_buffer.rs).
+    pub light_buffers: Vec<LightBuffer>,
     pub ambient: Vec3,
     pub background: Vec3,
     pub max_depth: u32,
@@ -134,17 +139,27 @@ impl PreparedScene {
                 material: object.material.clone(),
                 origin: object.shape.origin(),
                 planar_uv,
+                flat: matches!(
+                    object.shape,
+                    ShapeDesc::Polygon { .. } | ShapeDesc::Triangle { .. }
+                ),
             });
         }
         let bounds: Vec<Aabb> = primitives.iter().map(|p| p.shape.bounds()).collect();
         let (bvh, order) = Bvh::build(&bounds);
-        let primitives = order.iter().map(|&i| primitives[i as usize]).collect();
+        let primitives: Vec<Primitive> = order.iter().map(|&i| primitives[i as usize]).collect();
         let any_transmission = objects.iter().any(|o| o.material.transparency > 0.0);
+        let light_buffers = scene
+            .lights
+            .iter()
+            .map(|light| LightBuffer::new(light.position, &primitives))
+            .collect();
         Self {
             primitives,
             bvh,
             objects,
             lights: scene.lights.clone(),
+            light_buffers,
             ambient: scene.ambient,
             background: scene.background,
             max_depth: scene.render.max_depth,
@@ -190,33 +205,82 @@ impl PreparedScene {
         best
     }
 
+    /// The fraction of light `light` (an index into `lights`) sends that reaches `origin`:
+    /// the shadow ray from `origin` to the light. With `light_buffer` the ray tests only
+    /// what the light's buffer lists for its direction (none at all when nothing lies
+    /// between), else it traverses the BVH; both give the same answer.
+    ///
+    /// `leaving` names the object whose surface the ray starts on, when it leaves from the
+    /// outside towards a light on that side (or from either side of a flat object). Every
+    /// object is convex (a sphere, a closed cylinder, a tetrahedron, a convex polygon), so it
+    /// lies wholly behind the plane tangent at the origin and the ray cannot meet it again:
+    /// the buffer's lists skip it. The BVH path tests it regardless, as the reference.
+    #[inline]
+    pub fn light_reaching(
+        &self,
+        light: usize,
+        origin: Vec3,
+        leaving: Option<u32>,
+        light_buffer: bool,
+    ) -> Vec3 {
+        let to_light = self.lights[light].position - origin;
+        // The shadow ray ends exactly at the light: t = 1 on (light − origin).
+        let shadow = |to_light| RayQuery::new(Ray::new(origin, to_light));
+        if light_buffer && let Some(listed) = self.light_buffers[light].at(-to_light) {
+            let distance_sq = to_light.length_squared();
+            let mut q = None;
+            let mut light = Vec3::ONE;
+            for o in listed {
+                if o.min_distance_sq >= distance_sq {
+                    break; // this box and every later one start beyond the origin
+                }
+                if Some(o.object) == leaving {
+                    continue;
+                }
+                // Built only for a ray that has something to test.
+                let q = q.get_or_insert_with(|| shadow(to_light));
+                if !self.pass_through(o.primitive, q, 1.0, &mut light) {
+                    break;
+                }
+            }
+            return light;
+        }
+        self.transmittance(&shadow(to_light), 1.0)
+    }
+
     /// The fraction of light that reaches the end of the segment (0, t_max): zero behind
     /// any opaque surface, and tinted by every transparent surface crossed.
     #[inline]
     pub fn transmittance(&self, q: &RayQuery, t_max: f32) -> Vec3 {
         let mut light = Vec3::ONE;
-        self.bvh.visit(q, t_max, |i| {
-            let prim = &self.primitives[i as usize];
-            if !self.any_transmission {
-                if prim.shape.intersect(q, t_max).is_some() {
-                    light = Vec3::ZERO;
-                    return false;
-                }
-                return true;
-            }
-            let crossings = prim.shape.crossings(q, t_max);
-            if crossings > 0 {
-                let filter = self.objects[prim.object as usize].shadow_filter;
-                light *= filter;
-                if crossings == 2 {
-                    light *= filter;
-                }
-                if light == Vec3::ZERO {
-                    return false;
-                }
-            }
-            true
-        });
+        self.bvh
+            .visit(q, t_max, |i| self.pass_through(i, q, t_max, &mut light));
         light
+    }
+
+    /// Filters `light` by what primitive `i` lets through along the segment (0, t_max);
+    /// false once no light is left.
+    #[inline(always)]
+    fn pass_through(&self, i: u32, q: &RayQuery, t_max: f32, light: &mut Vec3) -> bool {
+        let prim = &self.primitives[i as usize];
+        if !self.any_transmission {
+            if prim.shape.intersect(q, t_max).is_some() {
+                *light = Vec3::ZERO;
+                return false;
+            }
+            return true;
+        }
+        let crossings = prim.shape.crossings(q, t_max);
+        if crossings > 0 {
+            let filter = self.objects[prim.object as usize].shadow_filter;
+            *light *= filter;
+            if crossings == 2 {
+                *light *= filter;
+            }
+            if *light == Vec3::ZERO {
+                return false;
+            }
+        }
+        true
     }
 }

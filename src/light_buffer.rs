@@ -1,0 +1,432 @@
+//! What a shadow ray can meet on its way to a point light, looked up by its direction as
+//! seen from the light.
+//!
+//! Every shadow ray toward a point light ends at the light, so the primitives that can
+//! block it are known before it is traced: those whose bounding box, seen from the light,
+//! covers its direction. This is the light buffer of Haines and Greenberg (1986): a cube
+//! around each light, each face divided into cells, each cell listing the primitives whose
+//! boxes it sees, nearest box first. A shadow ray stops reading its list at the first box
+//! that starts beyond its own far end (its shading point), and a ray whose list is empty
+//! up to there reaches the light without a single test. On the seed scene most shadow rays
+//! start on the floor under an empty sky (docs/benchmarks/README.md). Cells that too many
+//! boxes cover fall back to the BVH.
+
+use crate::scene::Primitive;
+use glam::{DVec3, Vec3};
+
+/// Cells along each side of a cube face.
+pub const FACE_CELLS: u32 = 64;
+
+/// A cell covered by more boxes than this is left to the BVH.
+pub const MAX_OCCLUDERS: usize = 16;
+
+/// Directions are widened by this much, in units of a face's tangent (a face spans −1..1),
+/// on top of the allowance for where a computed shadow ray can stray (`direction_margin`).
+const MARGIN: f64 = 1e-4;
+
+/// One primitive that shadow rays through a cell may meet.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Occluder {
+    /// Index into `PreparedScene::primitives`.
+    pub primitive: u32,
+    /// The object the primitive belongs to.
+    pub object: u32,
+    /// No point of the primitive lies nearer to the light than the square root of this: the
+    /// squared distance from the light to its box, rounded down by a relative 10⁻⁴ to cover
+    /// the rounding of a shadow ray's computed length.
+    pub min_distance_sq: f32,
+}
+
+/// The cube of cells around one point light.
+#[derive(Clone, Debug)]
+pub struct LightBuffer {
+    /// Each cell's occluders, as a range of `occluders`; `CROWDED` for a cell covered by
+    /// more than `MAX_OCCLUDERS` boxes, left to the BVH.
+    cells: Vec<(u32, u32)>,
+    occluders: Vec<Occluder>,
+}
+
+/// A range that slice `get` refuses (it starts after it ends).
+const CROWDED: (u32, u32) = (1, 0);
+
+/// The six faces: +x, −x, +y, −y, +z, −z. Face `2k + s` looks along axis k (s = 1: the
+/// negative way); its tangent coordinates are axes k + 1 and k + 2 (cyclically), divided
+/// by the distance along k.
+const FACES: usize = 6;
+
+impl LightBuffer {
+    /// The lists around a light at `light` for `primitives`.
+    pub fn new(light: Vec3, primitives: &[Primitive]) -> Self {
+        let r = FACE_CELLS as usize;
+        let cell_count = FACES * r * r;
+        let light = light.as_dvec3();
+        let boxes: Vec<(DVec3, DVec3)> = primitives
+            .iter()
+            .map(|p| {
+                let b = p.shape.bounds();
+                (b.min.as_dvec3(), b.max.as_dvec3())
+            })
+            .collect();
+        // The farthest any shading point can be from the light: rounding in a shadow ray's
+        // direction grows with its length.
+        let farthest = boxes
+            .iter()
+            .filter(|(lo, hi)| lo.is_finite() && hi.is_finite())
+            .map(|(lo, hi)| (*lo - light).abs().max((*hi - light).abs()).length())
+            .fold(0.0, f64::max);
+
+        let mut per_cell: Vec<Vec<Occluder>> = vec![Vec::new(); cell_count];
+        for (index, (lo, hi)) in boxes.iter().enumerate() {
+            let box_distance_sq = lower_bound_distance_sq(light, *lo, *hi);
+            for face in 0..FACES {
+                let Some(view) = FaceView::new(*lo, *hi, light, face, farthest) else {
+                    continue;
+                };
+                let (u0, v0, u1, v1) = view.cells;
+                for v in v0..=v1 {
+                    for u in u0..=u1 {
+                        per_cell[cell_index(face, u, v)].push(Occluder {
+                            primitive: index as u32,
+                            object: primitives[index].object,
+                            min_distance_sq: round_down(
+                                view.distance_sq_within(u, v).max(box_distance_sq),
+                            ),
+                        });
+                    }
+                }
+            }
+        }
+
+        let mut cells = Vec::with_capacity(cell_count);
+        let mut occluders = Vec::new();
+        for mut list in per_cell {
+            if list.len() > MAX_OCCLUDERS {
+                cells.push(CROWDED);
+            } else {
+                // Stable, so equal distances keep the primitives' order.
+                list.sort_by(|a, b| a.min_distance_sq.total_cmp(&b.min_distance_sq));
+                let start = occluders.len() as u32;
+                occluders.extend_from_slice(&list);
+                cells.push((start, occluders.len() as u32));
+            }
+        }
+        Self { cells, occluders }
+    }
+
+    /// The occluders a shadow ray may meet on the segment from the light to a point at
+    /// `from_light` from it, nearest box first; None when its cell is left to the BVH (or
+    /// the point is the light itself).
+    #[inline]
+    pub fn at(&self, from_light: Vec3) -> Option<&[Occluder]> {
+        let Vec3 { x, y, z } = from_light;
+        let a = from_light.abs();
+        // The major axis picks the face, the other two (in cyclic order) the cell; ties go
+        // to the lower axis, and `FaceView`'s margin covers either choice.
+        let (face, major, t_u, t_v) = if a.x >= a.y && a.x >= a.z {
+            ((x < 0.0) as usize, a.x, y, z)
+        } else if a.y >= a.z {
+            (2 + (y < 0.0) as usize, a.y, z, x)
+        } else {
+            (4 + (z < 0.0) as usize, a.z, x, y)
+        };
+        // Zero at the light itself. The sum is infinite or NaN when a component is (or when
+        // huge finite ones overflow; the BVH then answers, as for a crowded cell).
+        if major == 0.0
+            || (a.x + a.y + a.z).partial_cmp(&f32::INFINITY) != Some(std::cmp::Ordering::Less)
+        {
+            return None;
+        }
+        let half = 0.5 * FACE_CELLS as f32;
+        let scale = half / major;
+        // t / major lies in −1..1, so the cell is 0..=FACE_CELLS (the last only at +1).
+        let cell_of = |t: f32| (((t * scale) + half) as u32).min(FACE_CELLS - 1);
+        let (start, end) = self.cells[cell_index(face, cell_of(t_u), cell_of(t_v))];
+        // A crowded cell's range is empty-backwards, which `get` refuses.
+        self.occluders.get(start as usize..end as usize)
+    }
+
+    /// How many cells there are, and how many are empty, listed and left to the BVH.
+    pub fn census(&self) -> LightBufferCensus {
+        let mut census = LightBufferCensus::default();
+        for &(start, end) in &self.cells {
+            census.cells += 1;
+            if (start, end) == CROWDED {
+                census.crowded += 1;
+            } else if start == end {
+                census.empty += 1;
+            }
+        }
+        census
+    }
+}
+
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct LightBufferCensus {
+    pub cells: usize,
+    pub empty: usize,
+    pub crowded: usize,
+}
+
+#[inline]
+fn cell_index(face: usize, u: u32, v: u32) -> usize {
+    let r = FACE_CELLS as usize;
+    face * r * r + v as usize * r + u as usize
+}
+
+/// How far, in tangent units, a computed shadow ray can stray from the direction of a
+/// point on it at `distance` from the light. The ray starts at its shading point and runs
+/// along the rounded difference (light − origin), so its points near the light stray the
+/// most: by about one rounding of a length up to `farthest`, seen from `distance` away.
+fn direction_margin(distance: f64, farthest: f64) -> f64 {
+    MARGIN + 16.0 * f32::EPSILON as f64 * farthest / distance
+}
+
+/// One box as seen from the light through one face, in the face's coordinates relative to
+/// the light: depth along the face's axis, then the two tangent axes.
+struct FaceView {
+    /// The box's depth range, and its ranges along the tangent axes; None when the box
+    /// reaches round to the light's side of the face (or is unbounded): then it may lie in
+    /// any direction through the face.
+    extent: Option<[(f64, f64); 3]>,
+    /// How far a shadow ray's direction may stray, in tangent units (`direction_margin`).
+    margin: f64,
+    /// The inclusive rectangle of cells whose directions may meet the box.
+    cells: (u32, u32, u32, u32),
+}
+
+impl FaceView {
+    /// None when no direction through face `face` meets the box lo..hi.
+    fn new(lo: DVec3, hi: DVec3, light: DVec3, face: usize, farthest: f64) -> Option<Self> {
+        let whole_face = Self {
+            extent: None,
+            margin: 0.0,
+            cells: (0, 0, FACE_CELLS - 1, FACE_CELLS - 1),
+        };
+        if !(lo.is_finite() && hi.is_finite()) {
+            return Some(whole_face);
+        }
+        let (axis, negative) = (face / 2, face % 2 == 1);
+        let (lo, hi) = ((lo - light).to_array(), (hi - light).to_array());
+        // The box's extent along the face's axis, measured the way the face looks.
+        let depth = if negative {
+            (-hi[axis], -lo[axis])
+        } else {
+            (lo[axis], hi[axis])
+        };
+        if depth.1 <= 0.0 {
+            return None; // wholly behind the face's plane: no direction through it gets there
+        }
+        if depth.0 <= 0.0 {
+            return Some(whole_face);
+        }
+        let margin = direction_margin(depth.0, farthest);
+        let (u_axis, v_axis) = ((axis + 1) % 3, (axis + 2) % 3);
+        // t / depth over the box is extreme at its corners: it is monotone in t, and in
+        // depth for depth > 0.
+        let tangent_range = |k: usize| {
+            let quotients = [
+                lo[k] / depth.0,
+                lo[k] / depth.1,
+                hi[k] / depth.0,
+                hi[k] / depth.1,
+            ];
+            let min = quotients.iter().copied().fold(f64::INFINITY, f64::min);
+            let max = quotients.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+            (min - margin, max + margin)
+        };
+        let (u_min, u_max) = tangent_range(u_axis);
+        let (v_min, v_max) = tangent_range(v_axis);
+        if u_max < -1.0 || u_min > 1.0 || v_max < -1.0 || v_min > 1.0 {
+            return None;
+        }
+        let cell = |t: f64| {
+            let c = ((t + 1.0) * 0.5 * FACE_CELLS as f64).floor();
+            c.clamp(0.0, (FACE_CELLS - 1) as f64) as u32
+        };
+        Some(Self {
+            extent: Some([depth, (lo[u_axis], hi[u_axis]), (lo[v_axis], hi[v_axis])]),
+            margin,
+            cells: (cell(u_min), cell(v_min), cell(u_max), cell(v_max)),
+        })
+    }
+
+    /// A lower bound of the squared distance from the light to the part of the box that the
+    /// directions of cell (u, v) (widened by the margin) can reach. Tighter than the
+    /// distance to the whole box: seen from the light, a floor lies farther away in each
+    /// cell than the objects standing on it, so their shadow rays need not test it.
+    fn distance_sq_within(&self, u: u32, v: u32) -> f64 {
+        let Some([depth, u_extent, v_extent]) = self.extent else {
+            return 0.0;
+        };
+        let tangents = |c: u32| {
+            let step = 2.0 / FACE_CELLS as f64;
+            let (c0, c1) = (-1.0 + c as f64 * step, -1.0 + (c + 1) as f64 * step);
+            (c0 - self.margin, c1 + self.margin)
+        };
+        let (u_cell, v_cell) = (tangents(u), tangents(v));
+        // The depth z at which a direction with tangent in c0..c1 can reach a coordinate in
+        // lo..hi: c1·z ≥ lo and c0·z ≤ hi, each a lower bound on z when lo > 0 or hi < 0.
+        let least_depth = |(c0, c1): (f64, f64), (lo, hi): (f64, f64)| {
+            let mut z: f64 = 0.0;
+            if lo > 0.0 && c1 > 0.0 {
+                z = z.max(lo / c1);
+            }
+            if hi < 0.0 && c0 < 0.0 {
+                z = z.max(hi / c0);
+            }
+            z
+        };
+        let z = depth
+            .0
+            .max(least_depth(u_cell, u_extent))
+            .max(least_depth(v_cell, v_extent));
+        // Along a direction with tangents (a, b), distance = depth·√(1 + a² + b²).
+        let least_tangent_sq = |(c0, c1): (f64, f64)| {
+            if c0 <= 0.0 && c1 >= 0.0 {
+                0.0
+            } else {
+                (c0 * c0).min(c1 * c1)
+            }
+        };
+        z * z * (1.0 + least_tangent_sq(u_cell) + least_tangent_sq(v_cell))
+    }
+}
+
+/// The squared distance from `light` to the box lo..hi (0 for an unbounded box).
+fn lower_bound_distance_sq(light: DVec3, lo: DVec3, hi: DVec3) -> f64 {
+    if !(lo.is_finite() && hi.is_finite()) {
+        return 0.0;
+    }
+    (lo - light)
+        .max(light - hi)
+        .max(DVec3::ZERO)
+        .length_squared()
+}
+
+/// A squared distance rounded down by a relative 10⁻⁴ and then to f32, so that no computed
+/// squared length of a shadow ray that reaches that far is smaller.
+fn round_down(distance_sq: f64) -> f32 {
+    let distance_sq = distance_sq * (1.0 - 1e-4);
+    // f64 → f32 rounds to nearest; step down once more if that rounded up.
+    let d = distance_sq as f32;
+    if d as f64 > distance_sq {
+        d.next_down()
+    } else {
+        d
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::{Ray, RayQuery, Shape, Sphere};
+    use crate::scene::{PreparedScene, load_scene};
+
+    fn seed() -> PreparedScene {
+        PreparedScene::new(&load_scene(&crate::seed_scene_path()).unwrap())
+    }
+
+    /// A small deterministic generator for test points.
+    struct Lcg(u64);
+    impl Lcg {
+        fn next(&mut self) -> f32 {
+            self.0 = self
+                .0
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (self.0 >> 40) as f32 / (1u64 << 24) as f32
+        }
+    }
+
+    #[test]
+    fn every_primitive_a_shadow_ray_meets_is_listed_before_its_far_end() {
+        let scene = seed();
+        let light = scene.lights[0].position;
+        let buffer = LightBuffer::new(light, &scene.primitives);
+        let bounds = scene.bvh.bounds.unwrap();
+        let mut rng = Lcg(7);
+        let mut blocked = 0;
+        for _ in 0..20_000 {
+            // Points all over the scene's box (and a little beyond it).
+            let f = Vec3::new(rng.next(), rng.next(), rng.next()) * 1.2 - 0.1;
+            let origin = bounds.min + (bounds.max - bounds.min) * f;
+            let to_light = light - origin;
+            let q = RayQuery::new(Ray::new(origin, to_light));
+            let listed = buffer
+                .at(-to_light)
+                .expect("the seed scene has no crowded cell");
+            let distance_sq = to_light.length_squared();
+            for (i, p) in scene.primitives.iter().enumerate() {
+                if p.shape.intersect(&q, 1.0).is_some() {
+                    blocked += 1;
+                    let entry = listed.iter().find(|o| o.primitive == i as u32);
+                    let entry = entry.unwrap_or_else(|| panic!("{i} missing for {origin}"));
+                    assert!(entry.min_distance_sq < distance_sq);
+                }
+            }
+            assert!(listed.is_sorted_by(|a, b| a.min_distance_sq <= b.min_distance_sq));
+        }
+        assert!(blocked > 2000, "the test must meet occluders: {blocked}");
+    }
+
+    #[test]
+    fn most_of_the_seed_lights_cube_is_empty() {
+        let scene = seed();
+        let census = LightBuffer::new(scene.lights[0].position, &scene.primitives).census();
+        assert_eq!(census.cells, FACES * (FACE_CELLS * FACE_CELLS) as usize);
+        assert_eq!(census.crowded, 0);
+        // The floor fills much of the lower faces; the objects are small from the light.
+        assert!(census.empty > census.cells / 2, "{census:?}");
+    }
+
+    #[test]
+    fn a_box_around_the_light_is_listed_in_every_cell() {
+        let light = Vec3::new(1.0, 2.0, 3.0);
+        let around = Primitive {
+            shape: Shape::Sphere(Sphere::new(light + Vec3::new(0.5, 0.0, 0.0), 2.0)),
+            object: 0,
+        };
+        let buffer = LightBuffer::new(light, &[around]);
+        let census = buffer.census();
+        assert_eq!((census.empty, census.crowded), (0, 0));
+        let listed = buffer.at(Vec3::new(-3.0, 0.1, 0.2)).unwrap();
+        assert_eq!(listed[0].min_distance_sq, 0.0);
+    }
+
+    #[test]
+    fn directions_on_face_edges_and_corners_find_the_box_they_point_at() {
+        // Small spheres placed exactly on the diagonals between faces, and along the axes.
+        let light = Vec3::ZERO;
+        let mut directions = Vec::new();
+        for x in [-1.0f32, 0.0, 1.0] {
+            for y in [-1.0f32, 0.0, 1.0] {
+                for z in [-1.0f32, 0.0, 1.0] {
+                    if (x, y, z) != (0.0, 0.0, 0.0) {
+                        directions.push(Vec3::new(x, y, z));
+                    }
+                }
+            }
+        }
+        let primitives: Vec<Primitive> = directions
+            .iter()
+            .map(|d| Primitive {
+                shape: Shape::Sphere(Sphere::new(*d * 10.0, 0.01)),
+                object: 0,
+            })
+            .collect();
+        let buffer = LightBuffer::new(light, &primitives);
+        for (i, d) in directions.iter().enumerate() {
+            let listed = buffer.at(*d * 20.0).unwrap();
+            assert!(listed.iter().any(|o| o.primitive == i as u32), "{d}");
+        }
+    }
+
+    #[test]
+    fn the_light_itself_and_non_finite_directions_have_no_cell() {
+        let scene = seed();
+        let buffer = LightBuffer::new(scene.lights[0].position, &scene.primitives);
+        assert!(buffer.at(Vec3::ZERO).is_none());
+        assert!(buffer.at(Vec3::new(f32::INFINITY, 0.0, 1.0)).is_none());
+        assert!(buffer.at(Vec3::new(f32::NAN, 0.0, 1.0)).is_none());
+    }
+}
