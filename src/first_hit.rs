@@ -220,14 +220,7 @@ fn tile_rectangle(
 /// distance on a primitive inside the box is smaller.
 fn lower_bound_distance(eye: DVec3, lo: DVec3, hi: DVec3) -> f32 {
     let gap = (lo - eye).max(eye - hi).max(DVec3::ZERO);
-    let distance = gap.length() * (1.0 - 1e-4);
-    // f64 → f32 rounds to nearest; step down once more if that rounded up.
-    let d = distance as f32;
-    if d as f64 > distance {
-        d.next_down()
-    } else {
-        d
-    }
+    crate::numerics::f32_at_most(gap.length() * (1.0 - 1e-4))
 }
 
 #[cfg(test)]

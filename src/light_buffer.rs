@@ -420,14 +420,7 @@ fn lower_bound_distance_sq(light: DVec3, lo: DVec3, hi: DVec3) -> f64 {
 /// A squared distance rounded down by a relative 10⁻⁴ and then to f32, so that no computed
 /// squared length of a shadow ray that reaches that far is smaller.
 fn round_down(distance_sq: f64) -> f32 {
-    let distance_sq = distance_sq * (1.0 - 1e-4);
-    // f64 → f32 rounds to nearest; step down once more if that rounded up.
-    let d = distance_sq as f32;
-    if d as f64 > distance_sq {
-        d.next_down()
-    } else {
-        d
-    }
+    crate::numerics::f32_at_most(distance_sq * (1.0 - 1e-4))
 }
 
 #[cfg(test)]

@@ -41,6 +41,14 @@ pub fn next_float_down(v: f32) -> f32 {
     f32::from_bits(bits)
 }
 
+/// The largest f32 not above `v` (f64 → f32 rounds to nearest, which may round up): for
+/// lower bounds computed in f64 and compared in f32.
+#[inline]
+pub fn f32_at_most(v: f64) -> f32 {
+    let d = v as f32;
+    if d as f64 > v { d.next_down() } else { d }
+}
+
 /// Moves a hit point `p`, whose every coordinate is within `error` of the true surface point,
 /// off the surface with normal `n` to the side that direction `w` leaves towards, so that a
 /// ray from the returned origin cannot intersect the surface it starts on.
@@ -118,6 +126,15 @@ mod tests {
         assert!(next_float_up(0.0) > 0.0);
         assert!(next_float_down(0.0) < 0.0);
         assert_eq!(next_float_up(-1.0), -1.0 + f32::EPSILON / 2.0);
+    }
+
+    #[test]
+    fn f32_at_most_never_rounds_up() {
+        for v in [0.1f64, 1.0 / 3.0, 4393.560_547_5, 1e-30, 2.0, 0.0, -0.7] {
+            let d = f32_at_most(v);
+            assert!(d as f64 <= v, "{v}");
+            assert!(d.next_up() as f64 > v, "{v}: not the largest");
+        }
     }
 
     #[test]
