@@ -28,7 +28,9 @@ pub struct ObjectData {
     pub planar_uv: Option<PlanarUv>,
     /// What one crossing of this object's surface lets through to a shadow ray.
     pub shadow_filter: Vec3,
-    /// A polygon or triangle: no inside, so both its sides face out.
+    /// A polygon or triangle: no inside, so both its sides face out. (A polygon file is
+    /// planar within 10⁻⁴ of its extent, file.rs; a fold that small shadowing itself would be
+    /// acne, not something to draw.)
     pub flat: bool,
 }
 
