@@ -157,11 +157,11 @@ mod tests {
         };
         let rays = cam.rays(200, 100);
         let centre = rays.ray(100.0, 50.0);
-        assert!((centre.dir - -Vec3::Z).length() < 1e-6);
+        assert!((Vec3::from(centre.dir) - -Vec3::Z).length() < 1e-6);
         // Top edge at 45° up (vfov 90°), right edge wider by the aspect ratio.
-        let top = rays.ray(100.0, 0.0).dir;
+        let top = Vec3::from(rays.ray(100.0, 0.0).dir);
         assert!((top - Vec3::new(0.0, 1.0, -1.0).normalize()).length() < 1e-6);
-        let right = rays.ray(200.0, 50.0).dir;
+        let right = Vec3::from(rays.ray(200.0, 50.0).dir);
         assert!((right - Vec3::new(2.0, 0.0, -1.0).normalize()).length() < 1e-6);
     }
 
@@ -174,7 +174,7 @@ mod tests {
             vfov: 2.0 * (10.0f32 / 40.0).atan().to_degrees(),
             up: Vec3::Y,
         };
-        let top = cam.rays(100, 100).ray(50.0, 0.0).dir;
+        let top = Vec3::from(cam.rays(100, 100).ray(50.0, 0.0).dir);
         assert!((top.y / -top.z - 0.25).abs() < 1e-6);
     }
 
@@ -210,9 +210,9 @@ mod tests {
         let cam = Camera::looking_along_up(Vec3::ZERO, -Vec3::Z, Vec3::X, 90.0).unwrap();
         assert!((cam.forward() - -Vec3::Z).length() < 1e-6);
         let rays = cam.rays(100, 100);
-        let top = rays.ray(50.0, 0.0).dir;
+        let top = Vec3::from(rays.ray(50.0, 0.0).dir);
         assert!(top.x > 0.7, "the top of the image is towards +x: {top}");
-        let right = rays.ray(100.0, 50.0).dir;
+        let right = Vec3::from(rays.ray(100.0, 50.0).dir);
         assert!(right.y < -0.7, "{right}");
         for d in [Vec3::new(0.3, 0.4, -0.5), Vec3::new(-1.0, 0.2, 0.1)] {
             let c =

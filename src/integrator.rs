@@ -6,7 +6,7 @@ use crate::geometry::{Ray, RayQuery, ShapeHit};
 use crate::material::{reflect, refract};
 use crate::numerics::offset_ray_origin;
 use crate::scene::PreparedScene;
-use glam::Vec3;
+use glam::{Vec3, Vec3A};
 
 /// Rays traced, by kind.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -114,7 +114,7 @@ impl<'a> Integrator<'a> {
 
     /// Where a ray leaving `surface` towards `w` starts.
     #[inline]
-    fn leave(&self, surface: &crate::geometry::SurfacePoint, n: Vec3, w: Vec3) -> Vec3 {
+    fn leave(&self, surface: &crate::geometry::SurfacePoint, n: Vec3A, w: Vec3A) -> Vec3A {
         match self.self_intersection {
             SelfIntersection::ErrorBound => offset_ray_origin(surface.point, surface.error, n, w),
             SelfIntersection::FixedEpsilon(eps) => {
@@ -127,7 +127,7 @@ impl<'a> Integrator<'a> {
     /// The colour seen along a primary ray (unit direction), and its signature.
     #[inline]
     pub fn trace_primary(&mut self, ray: Ray) -> Sample {
-        self.primary(|this| this.trace(RayQuery::new(ray), 0.0, 0, 0, 1.0))
+        self.primary(|this| this.trace(RayQuery::new(ray), 0.0, None, 0, 0, 1.0))
     }
 
     /// `trace_primary` for a ray that can only hit `candidates` first (first_hit.rs): the
@@ -151,19 +151,32 @@ impl<'a> Integrator<'a> {
     /// Counts one primary ray and returns the colour `trace` finds with the signature it
     /// leaves.
     #[inline]
-    fn primary(&mut self, trace: impl FnOnce(&mut Self) -> Vec3) -> Sample {
+    fn primary(&mut self, trace: impl FnOnce(&mut Self) -> Vec3A) -> Sample {
         self.counts.primary += 1;
         self.signature = 0;
         let color = trace(self);
         Sample {
-            color,
+            color: color.into(),
             signature: self.signature,
         }
     }
 
-    /// The colour along `q` beyond distance `t_min`.
-    fn trace(&mut self, q: RayQuery, t_min: f32, depth: u32, straight: u32, weight: f32) -> Vec3 {
-        let found = self.scene.intersect(&q, t_min, f32::INFINITY);
+    /// The colour along `q` beyond distance `t_min`. `inside` names the isolated solid
+    /// (`ObjectData::isolated_solid`) the ray starts in, if any: its next hit is then on that
+    /// solid, found without the BVH.
+    fn trace(
+        &mut self,
+        q: RayQuery,
+        t_min: f32,
+        inside: Option<u32>,
+        depth: u32,
+        straight: u32,
+        weight: f32,
+    ) -> Vec3A {
+        let scene = self.scene;
+        let found = inside
+            .and_then(|solid| scene.intersect_inside(solid, &q, t_min))
+            .or_else(|| scene.intersect(&q, t_min, f32::INFINITY));
         self.shade(found.map(|hit| (q, hit)), depth, straight, weight)
     }
 
@@ -174,11 +187,11 @@ impl<'a> Integrator<'a> {
         depth: u32,
         straight: u32,
         weight: f32,
-    ) -> Vec3 {
+    ) -> Vec3A {
         let scene = self.scene;
         let Some((q, (hit, index))) = hit else {
             self.signature = mix(self.signature, u32::MAX);
-            return scene.background;
+            return scene.background.into();
         };
         let ray = q.ray;
         self.signature = mix(self.signature, index ^ (hit.detail.part() << 24));
@@ -196,7 +209,7 @@ impl<'a> Integrator<'a> {
         let p = surface.point;
 
         let opacity = 1.0 - material.transparency;
-        let mut color = Vec3::ZERO;
+        let mut color = Vec3A::ZERO;
         if opacity > 0.0 || material.specular > 0.0 {
             let uv = if !material.texture.needs_uv() {
                 (0.0, 0.0)
@@ -205,15 +218,15 @@ impl<'a> Integrator<'a> {
             } else {
                 prim.shape.uv(&surface, &hit)
             };
-            let base = material.texture.eval(uv, p - object.origin);
+            let base = Vec3A::from(material.texture.eval(uv, (p - object.origin).into()));
             if !material.texture.needs_uv() {
                 // A pattern's colour names its cell (an image varies within cells instead).
                 self.signature = mix(self.signature, base.x.to_bits() ^ base.z.to_bits());
             }
-            let mut diffuse = base * scene.ambient * material.ambient;
-            let mut specular = Vec3::ZERO;
+            let mut diffuse = base * Vec3A::from(scene.ambient) * material.ambient;
+            let mut specular = Vec3A::ZERO;
             for (light_index, light) in scene.lights.iter().enumerate() {
-                let to_light = light.position - p;
+                let to_light = Vec3A::from(light.position) - p;
                 let n_dot = n.dot(to_light);
                 if n_dot <= 0.0 {
                     continue; // the light is behind this side: no shadow ray needed
@@ -224,18 +237,18 @@ impl<'a> Integrator<'a> {
                 self.counts.shadow += 1;
                 let leaving = (entering || object.flat).then_some(prim.object);
                 let visible = scene.light_reaching(light_index, origin, leaving, self.light_buffer);
-                let shadow_class = if visible == Vec3::ZERO {
+                let shadow_class = if visible == Vec3A::ZERO {
                     0
-                } else if visible == Vec3::ONE {
+                } else if visible == Vec3A::ONE {
                     1
                 } else {
                     2 // through transparent surfaces
                 };
                 self.signature = mix(self.signature, shadow_class);
-                if visible == Vec3::ZERO {
+                if visible == Vec3A::ZERO {
                     continue;
                 }
-                let lit = visible * light.color;
+                let lit = visible * Vec3A::from(light.color);
                 diffuse += lit * base * (material.diffuse * n_dot / distance);
                 if material.specular > 0.0 {
                     let r = reflect(-l, n);
@@ -250,6 +263,14 @@ impl<'a> Integrator<'a> {
             color = diffuse * opacity + specular;
         }
 
+        // A ray leaving this surface inwards starts inside the object; when the object is
+        // an isolated solid, only the solid can stop it.
+        let inside = |dir: Vec3A| {
+            object
+                .isolated_solid
+                .filter(|_| dir.dot(surface.normal) < 0.0)
+        };
+
         // Reflection and refraction spend a bounce; a straight crossing does not.
         let bounces_left = depth < scene.max_depth;
         let reflectivity = material.reflectivity;
@@ -258,7 +279,9 @@ impl<'a> Integrator<'a> {
             let origin = self.leave(&surface, n, dir);
             self.counts.secondary += 1;
             let reflected = RayQuery::new(Ray::new(origin, dir));
-            color += self.trace(reflected, 0.0, depth + 1, 0, weight * reflectivity) * reflectivity;
+            let inside = inside(dir);
+            color += self.trace(reflected, 0.0, inside, depth + 1, 0, weight * reflectivity)
+                * reflectivity;
         }
         let transparency = material.transparency;
         if transparency > 0.0 && weight * transparency >= self.min_weight {
@@ -276,13 +299,14 @@ impl<'a> Integrator<'a> {
                     let origin = self.leave(&surface, n, dir);
                     self.counts.secondary += 1;
                     let q = RayQuery::new(Ray::new(origin, dir));
-                    self.trace(q, 0.0, depth + 1, 0, weight * transparency)
+                    self.trace(q, 0.0, inside(dir), depth + 1, 0, weight * transparency)
                 }
                 // Unbent light goes on along the very same ray, past this hit: exact, so an
                 // eta-1 clear object leaves the image untouched.
                 None if straight < MAX_STRAIGHT_CROSSINGS => {
                     self.counts.secondary += 1;
-                    self.trace(q, hit.t, depth, straight + 1, weight * transparency)
+                    let inside = inside(ray.dir);
+                    self.trace(q, hit.t, inside, depth, straight + 1, weight * transparency)
                 }
                 None => return color,
             };

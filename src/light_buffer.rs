@@ -517,7 +517,7 @@ mod tests {
             let Shape::Sphere(sphere) = bead.shape else {
                 unreachable!()
             };
-            let listed = buffer.at(sphere.center).unwrap();
+            let listed = buffer.at(sphere.center.into()).unwrap();
             assert!(listed.iter().any(|o| o.primitive == i as u32));
             assert!(listed.len() <= 4, "{listed:?}");
         }

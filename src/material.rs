@@ -1,7 +1,7 @@
 //! Phong surface terms and the directions of mirror reflection and refraction.
 
 use crate::texture::Texture;
-use glam::Vec3;
+use glam::{Vec3, Vec3A};
 
 /// A Whitted material, as in the seed: Phong local shading, plus a mirror term and a
 /// transmitted term that may bend by Snell's law.
@@ -50,7 +50,7 @@ impl Material {
 
 /// Mirror reflection of direction `d` about unit normal `n`.
 #[inline]
-pub fn reflect(d: Vec3, n: Vec3) -> Vec3 {
+pub fn reflect(d: Vec3A, n: Vec3A) -> Vec3A {
     d - n * (2.0 * d.dot(n))
 }
 
@@ -59,7 +59,7 @@ pub fn reflect(d: Vec3, n: Vec3) -> Vec3 {
 /// reflection. At a ratio of exactly 1 the direction is returned unchanged, so an eta-1
 /// object bends nothing; near 1 the result varies continuously with the ratio.
 #[inline]
-pub fn refract(d: Vec3, n: Vec3, eta_ratio: f32) -> Option<Vec3> {
+pub fn refract(d: Vec3A, n: Vec3A, eta_ratio: f32) -> Option<Vec3A> {
     if eta_ratio == 1.0 {
         return Some(d);
     }
@@ -77,22 +77,22 @@ pub fn refract(d: Vec3, n: Vec3, eta_ratio: f32) -> Option<Vec3> {
 mod tests {
     use super::*;
 
-    fn dir_at(angle_deg: f32) -> Vec3 {
+    fn dir_at(angle_deg: f32) -> Vec3A {
         // Travelling down onto the plane y = 0 at `angle` from the normal, in the xy plane.
         let a = angle_deg.to_radians();
-        Vec3::new(a.sin(), -a.cos(), 0.0)
+        Vec3A::new(a.sin(), -a.cos(), 0.0)
     }
 
     #[test]
     fn reflection_flips_the_normal_component() {
-        let r = reflect(dir_at(30.0), Vec3::Y);
-        assert!((r - Vec3::new(0.5, 3f32.sqrt() / 2.0, 0.0)).length() < 1e-6);
+        let r = reflect(dir_at(30.0), Vec3A::Y);
+        assert!((r - Vec3A::new(0.5, 3f32.sqrt() / 2.0, 0.0)).length() < 1e-6);
     }
 
     #[test]
     fn snell_law_at_a_plane() {
         for (eta, angle) in [(1.5f32, 30.0f32), (1.43, 60.0), (1.002, 45.0), (2.4, 10.0)] {
-            let t = refract(dir_at(angle), Vec3::Y, 1.0 / eta).unwrap();
+            let t = refract(dir_at(angle), Vec3A::Y, 1.0 / eta).unwrap();
             assert!((t.length() - 1.0).abs() < 1e-6);
             let sin_t = t.x;
             let expected = angle.to_radians().sin() / eta;
@@ -105,7 +105,7 @@ mod tests {
     fn eta_one_is_the_identity() {
         for angle in [0.0, 10.0, 45.0, 89.9] {
             let d = dir_at(angle);
-            assert_eq!(refract(d, Vec3::Y, 1.0), Some(d));
+            assert_eq!(refract(d, Vec3A::Y, 1.0), Some(d));
         }
     }
 
@@ -113,16 +113,16 @@ mod tests {
     fn total_internal_reflection_past_the_critical_angle() {
         // From glass (1.5) into air: critical angle asin(1/1.5) ≈ 41.81°.
         let critical = (1.0f32 / 1.5).asin().to_degrees();
-        assert!(refract(dir_at(critical - 0.5), Vec3::Y, 1.5).is_some());
-        assert!(refract(dir_at(critical + 0.5), Vec3::Y, 1.5).is_none());
-        assert!(refract(dir_at(89.999), Vec3::Y, 1.5).is_none());
+        assert!(refract(dir_at(critical - 0.5), Vec3A::Y, 1.5).is_some());
+        assert!(refract(dir_at(critical + 0.5), Vec3A::Y, 1.5).is_none());
+        assert!(refract(dir_at(89.999), Vec3A::Y, 1.5).is_none());
     }
 
     #[test]
     fn refraction_is_continuous_near_eta_one() {
         let d = dir_at(60.0);
-        let exact = refract(d, Vec3::Y, 1.0).unwrap();
-        let near = refract(d, Vec3::Y, 1.0 / 1.002).unwrap();
+        let exact = refract(d, Vec3A::Y, 1.0).unwrap();
+        let near = refract(d, Vec3A::Y, 1.0 / 1.002).unwrap();
         let angle = exact.dot(near).clamp(-1.0, 1.0).acos().to_degrees();
         // d(θt)/d(η) = tan θ at η = 1, so 0.002 bends by about 0.002·tan 60° rad ≈ 0.2°.
         assert!(angle > 0.1 && angle < 0.3, "bent by {angle}°");

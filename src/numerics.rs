@@ -5,7 +5,7 @@
 //! rays leave the surface by exactly as much as that bound requires (pbrt-v4, section 6.8;
 //! the same idea as Wächter and Binder, Ray Tracing Gems chapter 6).
 
-use glam::Vec3;
+use glam::{Vec3, Vec3A};
 
 /// Half the distance between 1.0 and the next f32: the unit roundoff of one operation.
 pub const MACHINE_EPSILON: f32 = f32::EPSILON * 0.5;
@@ -53,7 +53,7 @@ pub fn f32_at_most(v: f64) -> f32 {
 /// off the surface with normal `n` to the side that direction `w` leaves towards, so that a
 /// ray from the returned origin cannot intersect the surface it starts on.
 #[inline]
-pub fn offset_ray_origin(p: Vec3, error: Vec3, n: Vec3, w: Vec3) -> Vec3 {
+pub fn offset_ray_origin(p: Vec3A, error: Vec3A, n: Vec3A, w: Vec3A) -> Vec3A {
     // The addition p + offset rounds each coordinate by up to half a step of p; adding one
     // full relative step per coordinate to the bound keeps the result outside without
     // pbrt's per-axis next-float stepping (cheaper, and branch-free).
@@ -156,11 +156,11 @@ mod tests {
 
     #[test]
     fn offset_origin_lands_on_the_side_of_w() {
-        let p = Vec3::new(1.0e5, 3.0, -2.0);
-        let n = Vec3::Y;
-        let err = Vec3::splat(1e-3);
-        let above = offset_ray_origin(p, err, n, Vec3::Y);
-        let below = offset_ray_origin(p, err, n, -Vec3::Y);
+        let p = Vec3A::new(1.0e5, 3.0, -2.0);
+        let n = Vec3A::Y;
+        let err = Vec3A::splat(1e-3);
+        let above = offset_ray_origin(p, err, n, Vec3A::Y);
+        let below = offset_ray_origin(p, err, n, -Vec3A::Y);
         assert!(above.y > p.y + 1e-3 * 0.99);
         assert!(below.y < p.y - 1e-3 * 0.99);
     }

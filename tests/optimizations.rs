@@ -161,3 +161,59 @@ fn light_buffers_draw_the_image_the_bvh_draws() {
         );
     }
 }
+
+#[test]
+fn rays_inside_isolated_solids_find_what_the_bvh_finds() {
+    // A ray that starts inside a sphere or cylinder that no other box comes near tests only
+    // that solid (ObjectData::isolated_solid). Here: the seed, where the five spheres are
+    // isolated and the cylinder, standing on the floor, is not; and a variant with a glass
+    // cylinder lifted off the floor (isolated, refracting through its side and caps) and a
+    // bead inside the clear green sphere (so neither of those two is isolated).
+    use glam::Vec3;
+    use prism::material::Material;
+    use prism::scene::{SceneObject, ShapeDesc};
+    use prism::texture::Texture;
+
+    let seed = seed();
+    let mut variant = seed.clone();
+    for object in &mut variant.objects {
+        if let ShapeDesc::Cylinder { base, .. } = &mut object.shape {
+            base.y += 1.0;
+            object.material.transparency = 0.8;
+            object.material.eta = Some(1.5);
+        }
+    }
+    variant.objects.push(SceneObject {
+        name: "bead".into(),
+        shape: ShapeDesc::Sphere {
+            center: Vec3::new(-9.0, -10.5, -60.0),
+            radius: 1.0,
+        },
+        material: Material {
+            texture: Texture::Solid(Vec3::new(0.9, 0.2, 0.1)),
+            ..Material::default()
+        },
+    });
+    let isolated = |prepared: &PreparedScene, name: &str| {
+        let object = prepared.objects.iter().find(|o| o.name == name).unwrap();
+        object.isolated_solid.is_some()
+    };
+    for (name, scene) in [("seed", seed), ("variant", variant)] {
+        let fast = PreparedScene::new(&scene);
+        let seed = name == "seed";
+        assert!(isolated(&fast, "mirror sphere") && isolated(&fast, "glass sphere (eta 1.43)"));
+        assert_eq!(isolated(&fast, "green sphere"), seed, "{name}");
+        assert_eq!(isolated(&fast, "striped cylinder"), !seed, "{name}");
+        assert!(!isolated(&fast, "floor") && !isolated(&fast, "tetrahedron"));
+        let mut slow = fast.clone();
+        for object in &mut slow.objects {
+            object.isolated_solid = None;
+        }
+        let s = RenderSettings::new(200, 150, 2);
+        assert_eq!(
+            image(Arc::new(fast), scene.camera, s),
+            image(Arc::new(slow), scene.camera, s),
+            "{name}"
+        );
+    }
+}

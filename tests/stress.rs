@@ -252,10 +252,11 @@ fn tetrahedron() -> [(Triangle, [usize; 3], Vec3); 4] {
     std::array::from_fn(|skip| {
         let idx: Vec<usize> = (0..4).filter(|&i| i != skip).collect();
         let t = Triangle::new(TETRA[idx[0]], TETRA[idx[1]], TETRA[idx[2]]).unwrap();
-        let outward = if t.normal.dot(TETRA[idx[0]] - centroid) > 0.0 {
-            t.normal
+        let normal = Vec3::from(t.normal);
+        let outward = if normal.dot(TETRA[idx[0]] - centroid) > 0.0 {
+            normal
         } else {
-            -t.normal
+            -normal
         };
         (t, [idx[0], idx[1], idx[2]], outward)
     })
@@ -466,7 +467,7 @@ proptest! {
         prop_assume!((pb - pa).cross(pc - pa).length() > 1e-2 * mag * mag);
         let (u, v) = (w.0 * (1.0 - w.1), w.1);
         let target = pa * (1.0 - u - v) + pb * u + pc * v;
-        prop_assume!(from.dot(tri.normal).abs() > 0.05);
+        prop_assume!(from.dot(tri.normal.into()).abs() > 0.05);
         let o = target + from * mag * 3.0;
         let q = RayQuery::new(Ray::new(o, target - o));
         let hit = tri.intersect(&q, f32::INFINITY);

@@ -13,9 +13,10 @@ use std::time::Instant;
 
 /// The textbook root: (−b − √(b² − 4ac)) / 2a, all in f32.
 fn naive_near_root(ray: &Ray, c: Vec3, r: f32) -> Option<f32> {
-    let f = ray.origin - c;
-    let a = ray.dir.dot(ray.dir);
-    let b = 2.0 * f.dot(ray.dir);
+    let f = Vec3::from(ray.origin) - c;
+    let d = Vec3::from(ray.dir);
+    let a = d.dot(d);
+    let b = 2.0 * f.dot(d);
     let cc = f.dot(f) - r * r;
     let disc = b * b - 4.0 * a * cc;
     (disc >= 0.0).then(|| (-b - disc.sqrt()) / (2.0 * a))

@@ -40,6 +40,11 @@ impl Aabb {
         self.min.x > self.max.x
     }
 
+    /// Whether the boxes share a point (touching counts; an empty box overlaps nothing).
+    pub fn overlaps(&self, other: &Aabb) -> bool {
+        self.min.cmple(other.max).all() && other.min.cmple(self.max).all()
+    }
+
     /// Half the surface area: the SAH only compares areas, so the factor 2 is dropped.
     pub fn half_area(&self) -> f32 {
         if self.is_empty() {

@@ -340,6 +340,28 @@ impl Bvh {
         }
     }
 
+    /// Calls `visit` with every primitive in a leaf whose box overlaps `b` (touching
+    /// counts), in no particular order. For scene preparation, not for rays.
+    pub fn overlapping(&self, b: &Aabb, mut visit: impl FnMut(u32)) {
+        if self.nodes.is_empty() {
+            return;
+        }
+        let mut stack = vec![0u32];
+        while let Some(node) = stack.pop() {
+            let n = &self.nodes[node as usize];
+            for lane in 0..4 {
+                if !n.bounds(lane).overlaps(b) {
+                    continue;
+                }
+                match n.child(lane) {
+                    Child::Empty => {}
+                    Child::Node(c) => stack.push(c),
+                    Child::Leaf(range) => range.for_each(&mut visit),
+                }
+            }
+        }
+    }
+
     /// The number of nodes on the longest path from the root.
     pub fn depth(&self) -> usize {
         fn depth_of(nodes: &[WideNode], i: usize) -> usize {
@@ -464,6 +486,40 @@ mod tests {
         walk(&bvh, 0, &order, &bounds, &mut seen, &[]);
         assert!(seen.iter().all(|&n| n == 1));
         assert!(bvh.depth() <= MAX_DEPTH + 1);
+    }
+
+    /// A box query visits every primitive whose box overlaps the query box (and, being
+    /// by leaf, possibly a few more).
+    #[test]
+    fn overlapping_finds_every_primitive_box_that_meets_the_query() {
+        let spheres = grid_spheres(3000);
+        let bounds: Vec<Aabb> = spheres.iter().map(|s| s.bounds()).collect();
+        let (bvh, order) = Bvh::build(&bounds);
+        let queries = [
+            Aabb::from_points(&[Vec3::new(-1.0, -1.0, -11.0), Vec3::new(1.0, 1.0, -9.0)]),
+            Aabb::from_points(&[Vec3::new(2.0, 2.0, -11.0), Vec3::new(40.0, 7.0, -9.0)]),
+            // Touching sphere 1's box (x from 2 to 4) at x = 2 only.
+            Aabb::from_points(&[Vec3::new(1.5, -0.5, -10.0), Vec3::new(2.0, 0.5, -10.0)]),
+            Aabb::from_points(&[Vec3::new(1.2, 50.0, -10.0), Vec3::new(1.8, 60.0, -10.0)]),
+            Aabb::EMPTY,
+        ];
+        for query in queries {
+            let mut found = Vec::new();
+            bvh.overlapping(&query, |i| {
+                let original = order[i as usize] as usize;
+                if bounds[original].overlaps(&query) {
+                    found.push(original);
+                }
+            });
+            found.sort();
+            let brute: Vec<usize> = (0..bounds.len())
+                .filter(|&i| bounds[i].overlaps(&query))
+                .collect();
+            assert_eq!(found, brute, "{query:?}");
+        }
+        let mut touching = 0;
+        bvh.overlapping(&queries[2], |i| touching += (order[i as usize] == 1) as u32);
+        assert_eq!(touching, 1);
     }
 
     /// The entry distance into lane 0's box and whether the ray enters it before `t_max`.

@@ -4,7 +4,7 @@
 use super::aabb::Aabb;
 use super::ray::Ray;
 use crate::numerics::{gamma, stable_quadratic_roots};
-use glam::{Vec2, Vec3};
+use glam::{Vec2, Vec3, Vec3A};
 use std::f32::consts::PI;
 
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -111,7 +111,7 @@ impl Cylinder {
 
     /// Hit point (moved exactly onto the surface), outward unit normal and error bound.
     #[inline]
-    pub fn surface(&self, ray: &Ray, t: f32, part: CylinderPart) -> (Vec3, Vec3, Vec3) {
+    pub fn surface(&self, ray: &Ray, t: f32, part: CylinderPart) -> (Vec3A, Vec3A, Vec3A) {
         let mut p = ray.at(t);
         let scale = self.base.abs() + Vec3::new(self.radius, self.height, self.radius);
         match part {
@@ -122,12 +122,12 @@ impl Cylinder {
                 p.x = self.base.x + n.x * self.radius;
                 p.z = self.base.z + n.y * self.radius;
                 // y comes from o + t·d; its error grows with the ray's length.
-                let error = Vec3::new(
+                let error = Vec3A::new(
                     gamma(5) * scale.x,
                     gamma(7) * (ray.origin.y.abs() + (t * ray.dir.y).abs()) + gamma(3) * scale.y,
                     gamma(5) * scale.z,
                 );
-                (p, Vec3::new(n.x, 0.0, n.y), error)
+                (p, Vec3A::new(n.x, 0.0, n.y), error)
             }
             CylinderPart::Bottom | CylinderPart::Top => {
                 let top = part == CylinderPart::Top;
@@ -136,12 +136,12 @@ impl Cylinder {
                 } else {
                     self.base.y
                 };
-                let error = Vec3::new(
+                let error = Vec3A::new(
                     gamma(7) * (ray.origin.x.abs() + (t * ray.dir.x).abs()),
                     gamma(2) * scale.y,
                     gamma(7) * (ray.origin.z.abs() + (t * ray.dir.z).abs()),
                 );
-                let n = if top { Vec3::Y } else { -Vec3::Y };
+                let n = if top { Vec3A::Y } else { -Vec3A::Y };
                 (p, n, error)
             }
         }
@@ -149,8 +149,8 @@ impl Cylinder {
 
     /// u: angle around the axis from +z towards +x, in [0, 1); v: height from the base on
     /// the side, distance from the axis on the caps, in [0, 1].
-    pub fn uv(&self, p: Vec3, part: CylinderPart) -> (f32, f32) {
-        let rel = p - self.base;
+    pub fn uv(&self, p: Vec3A, part: CylinderPart) -> (f32, f32) {
+        let rel = Vec3::from(p) - self.base;
         let u = 0.5 + rel.x.atan2(rel.z) / (2.0 * PI);
         let v = match part {
             CylinderPart::Side => rel.y / self.height,
@@ -183,8 +183,8 @@ mod tests {
         assert_eq!(part, CylinderPart::Side);
         assert!((t - 8.0).abs() < 1e-5);
         let (p, n, _) = c.surface(&ray, t, part);
-        assert!((p - Vec3::new(0.0, 0.0, -8.0)).length() < 1e-5);
-        assert_eq!(n, Vec3::Z);
+        assert!((p - Vec3A::new(0.0, 0.0, -8.0)).length() < 1e-5);
+        assert_eq!(n, Vec3A::Z);
         let (u, v) = c.uv(p, part);
         assert!((u - 0.5).abs() < 1e-6 && (v - 1.0 / 3.0).abs() < 1e-6);
     }
@@ -196,7 +196,7 @@ mod tests {
         let (t, part) = c.intersect(&ray, f32::INFINITY).unwrap();
         let (p, n, _) = c.surface(&ray, t, part);
         // The seed: n = (x − xc, 0, z − zc) / R.
-        let expected = Vec3::new(p.x - c.base.x, 0.0, p.z - c.base.z) / c.radius;
+        let expected = Vec3A::new(p.x - c.base.x, 0.0, p.z - c.base.z) / c.radius;
         assert!((n - expected).length() < 1e-5);
         assert!((p.x - 1.0).abs() < 1e-5 && (p.z - (-10.0 + 3f32.sqrt())).abs() < 1e-5);
     }
@@ -209,7 +209,7 @@ mod tests {
         assert_eq!(part, CylinderPart::Top);
         assert!((t - 8.0).abs() < 1e-6);
         let (_, n, _) = c.surface(&down, t, part);
-        assert_eq!(n, Vec3::Y);
+        assert_eq!(n, Vec3A::Y);
         let up = Ray::new(Vec3::new(0.5, -5.0, -10.0), Vec3::Y);
         let (t, part) = c.intersect(&up, f32::INFINITY).unwrap();
         assert_eq!(part, CylinderPart::Bottom);

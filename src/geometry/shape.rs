@@ -5,7 +5,7 @@ use super::cylinder::{Cylinder, CylinderPart};
 use super::ray::RayQuery;
 use super::sphere::Sphere;
 use super::triangle::{Triangle, TriangleHit};
-use glam::Vec3;
+use glam::Vec3A;
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Shape {
@@ -43,11 +43,11 @@ impl HitDetail {
 /// A point on a surface, as shading needs it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SurfacePoint {
-    pub point: Vec3,
+    pub point: Vec3A,
     /// Per-coordinate bound on the distance of `point` from the true surface.
-    pub error: Vec3,
+    pub error: Vec3A,
     /// Outward (for closed shapes) or winding-order (for triangles) unit normal.
-    pub normal: Vec3,
+    pub normal: Vec3A,
 }
 
 impl Shape {

@@ -3,18 +3,21 @@
 use super::aabb::Aabb;
 use super::ray::Ray;
 use crate::numerics::{gamma, stable_quadratic_roots};
-use glam::Vec3;
+use glam::{Vec3, Vec3A};
 use std::f32::consts::PI;
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Sphere {
-    pub center: Vec3,
+    pub center: Vec3A,
     pub radius: f32,
 }
 
 impl Sphere {
     pub fn new(center: Vec3, radius: f32) -> Self {
-        Self { center, radius }
+        Self {
+            center: center.into(),
+            radius,
+        }
     }
 
     /// Both ray parameters where the ray's line meets the sphere, t0 ≤ t1.
@@ -70,13 +73,13 @@ impl Sphere {
     /// The outward unit normal, the hit point reprojected onto the sphere, and a bound on the
     /// point's per-coordinate error.
     #[inline]
-    pub fn surface(&self, ray: &Ray, t: f32) -> (Vec3, Vec3, Vec3) {
+    pub fn surface(&self, ray: &Ray, t: f32) -> (Vec3A, Vec3A, Vec3A) {
         let offset = ray.at(t) - self.center;
         let length = offset.length();
         let normal = if length > 0.0 {
             offset / length
         } else {
-            -ray.dir.normalize_or(Vec3::Y)
+            -ray.dir.normalize_or(Vec3A::Y)
         };
         // Reprojecting onto the sphere removes the error of o + t·d (which grows with t);
         // what remains is the rounding of c + r·n.
@@ -89,17 +92,17 @@ impl Sphere {
     /// u = 0 (longitude 0 faces +z, towards the default camera), v runs south from the north
     /// pole (+y) at v = 0, so an equirectangular image maps with north up.
     #[inline]
-    pub fn uv(normal: Vec3) -> (f32, f32) {
+    pub fn uv(normal: Vec3A) -> (f32, f32) {
         let u = 0.5 + normal.x.atan2(normal.z) / (2.0 * PI);
         let v = 0.5 - normal.y.clamp(-1.0, 1.0).asin() / PI;
         (u, v)
     }
 
     pub fn bounds(&self) -> Aabb {
-        let r = Vec3::splat(self.radius);
+        let r = Vec3A::splat(self.radius);
         Aabb {
-            min: self.center - r,
-            max: self.center + r,
+            min: (self.center - r).into(),
+            max: (self.center + r).into(),
         }
     }
 }
@@ -119,8 +122,8 @@ mod tests {
         let t = s.intersect(&ray, f32::INFINITY).unwrap();
         assert_eq!(t, 4.0);
         let (p, n, _) = s.surface(&ray, t);
-        assert_eq!(p, Vec3::new(0.0, 0.0, -4.0));
-        assert_eq!(n, Vec3::Z);
+        assert_eq!(p, Vec3A::new(0.0, 0.0, -4.0));
+        assert_eq!(n, Vec3A::Z);
     }
 
     #[test]
@@ -144,7 +147,7 @@ mod tests {
         let t = s.intersect(&ray, f32::INFINITY).unwrap();
         assert_eq!(t, 0.5);
         let (_, n, _) = s.surface(&ray, t);
-        assert_eq!(n, Vec3::Y);
+        assert_eq!(n, Vec3A::Y);
         assert_eq!(s.crossings(&ray, f32::INFINITY), 1);
     }
 
@@ -173,16 +176,16 @@ mod tests {
 
     #[test]
     fn uv_of_known_directions() {
-        let (u, v) = Sphere::uv(Vec3::Z);
+        let (u, v) = Sphere::uv(Vec3A::Z);
         assert!((u - 0.5).abs() < 1e-6 && (v - 0.5).abs() < 1e-6);
-        let (u, _) = Sphere::uv(Vec3::X);
+        let (u, _) = Sphere::uv(Vec3A::X);
         assert!(
             (u - 0.75).abs() < 1e-6,
             "east of the facing meridian is to the right"
         );
-        let (_, v) = Sphere::uv(Vec3::Y);
+        let (_, v) = Sphere::uv(Vec3A::Y);
         assert!(v.abs() < 1e-6);
-        let (_, v) = Sphere::uv(-Vec3::Y);
+        let (_, v) = Sphere::uv(-Vec3A::Y);
         assert!((v - 1.0).abs() < 1e-6);
     }
 }

@@ -4,13 +4,13 @@
 use super::aabb::Aabb;
 use super::ray::RayQuery;
 use crate::numerics::gamma;
-use glam::Vec3;
+use glam::{Vec3, Vec3A};
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Triangle {
-    pub p: [Vec3; 3],
+    pub p: [Vec3A; 3],
     /// Unit normal by the right-hand rule over p0, p1, p2.
-    pub normal: Vec3,
+    pub normal: Vec3A,
 }
 
 /// Where on a triangle a ray hit it.
@@ -26,8 +26,8 @@ impl Triangle {
     pub fn new(p0: Vec3, p1: Vec3, p2: Vec3) -> Option<Self> {
         let normal = crate::numerics::try_normalize((p1 - p0).cross(p2 - p0))?;
         Some(Self {
-            p: [p0, p1, p2],
-            normal,
+            p: [p0.into(), p1.into(), p2.into()],
+            normal: normal.into(),
         })
     }
 
@@ -112,7 +112,7 @@ impl Triangle {
     /// The hit point from the barycentric weights (accurate regardless of the ray's length)
     /// and its error bound (pbrt-v4, section 6.8.4).
     #[inline]
-    pub fn surface(&self, hit: &TriangleHit) -> (Vec3, Vec3) {
+    pub fn surface(&self, hit: &TriangleHit) -> (Vec3A, Vec3A) {
         let [b0, b1, b2] = hit.b;
         let t0 = self.p[0] * b0;
         let t1 = self.p[1] * b1;
@@ -123,7 +123,7 @@ impl Triangle {
     }
 
     pub fn bounds(&self) -> Aabb {
-        Aabb::from_points(&self.p)
+        Aabb::from_points(&self.p.map(Vec3::from))
     }
 }
 
@@ -191,8 +191,8 @@ mod tests {
         assert!((h.t - 5.0).abs() < 1e-6);
         assert!((h.b.iter().sum::<f32>() - 1.0).abs() < 1e-6);
         let (p, _) = t.surface(&h);
-        assert!((p - Vec3::new(0.0, 0.0, -5.0)).length() < 1e-6);
-        assert_eq!(t.normal, Vec3::Z);
+        assert!((p - Vec3A::new(0.0, 0.0, -5.0)).length() < 1e-6);
+        assert_eq!(t.normal, Vec3A::Z);
     }
 
     #[test]

@@ -7,7 +7,7 @@ use crate::geometry::{Aabb, Bvh, Cylinder, Ray, RayQuery, Shape, ShapeHit, Spher
 use crate::light::PointLight;
 use crate::light_buffer::LightBuffer;
 use crate::material::Material;
-use glam::Vec3;
+use glam::{Vec3, Vec3A};
 
 /// One intersectable piece of an object (a polygon becomes a fan of triangles, a
 /// tetrahedron four).
@@ -23,22 +23,27 @@ pub struct ObjectData {
     pub name: String,
     pub material: Material,
     /// Procedural textures are evaluated relative to this point.
-    pub origin: Vec3,
+    pub origin: Vec3A,
     /// For polygons: (u, v) in [0, 1] over the polygon's extent in its own plane.
     pub planar_uv: Option<PlanarUv>,
     /// What one crossing of this object's surface lets through to a shadow ray.
-    pub shadow_filter: Vec3,
+    pub shadow_filter: Vec3A,
     /// A polygon or triangle: no inside, so both its sides face out. (A polygon file is
     /// planar within 10⁻⁴ of its extent, file.rs; a fold that small shadowing itself would be
     /// acne, not something to draw.)
     pub flat: bool,
+    /// For a solid made of one primitive (a sphere or a capped cylinder: closed and convex)
+    /// that no other primitive's box comes near: that primitive. A ray that starts inside
+    /// it meets nothing else before it leaves, so its next hit needs no BVH
+    /// (`PreparedScene::intersect_inside`).
+    pub isolated_solid: Option<u32>,
 }
 
 #[derive(Clone, Copy, Debug)]
 pub struct PlanarUv {
-    origin: Vec3,
-    u_axis: Vec3,
-    v_axis: Vec3,
+    origin: Vec3A,
+    u_axis: Vec3A,
+    v_axis: Vec3A,
 }
 
 impl PlanarUv {
@@ -53,14 +58,14 @@ impl PlanarUv {
         }
         let size = hi - lo;
         Self {
-            origin: vertices[0] + u_dir * lo.x + v_dir * lo.y,
-            u_axis: u_dir / size.x,
-            v_axis: v_dir / size.y,
+            origin: (vertices[0] + u_dir * lo.x + v_dir * lo.y).into(),
+            u_axis: (u_dir / size.x).into(),
+            v_axis: (v_dir / size.y).into(),
         }
     }
 
     #[inline]
-    pub fn uv(&self, p: Vec3) -> (f32, f32) {
+    pub fn uv(&self, p: Vec3A) -> (f32, f32) {
         let d = p - self.origin;
         (d.dot(self.u_axis), d.dot(self.v_axis))
     }
@@ -128,7 +133,7 @@ impl PreparedScene {
                         }
                         let mut tri = Triangle::new(face[0], face[1], face[2]).expect("validated");
                         // Wind every face so its normal points away from the inside.
-                        if tri.normal.dot(face[0] - centroid) < 0.0 {
+                        if tri.normal.dot((face[0] - centroid).into()) < 0.0 {
                             tri = Triangle::new(face[0], face[2], face[1]).expect("validated");
                         }
                         push(Shape::Triangle(tri));
@@ -137,19 +142,21 @@ impl PreparedScene {
             }
             objects.push(ObjectData {
                 name: object.name.clone(),
-                shadow_filter: object.material.shadow_filter(),
+                shadow_filter: object.material.shadow_filter().into(),
                 material: object.material.clone(),
-                origin: object.shape.origin(),
+                origin: object.shape.origin().into(),
                 planar_uv,
                 flat: matches!(
                     object.shape,
                     ShapeDesc::Polygon { .. } | ShapeDesc::Triangle { .. }
                 ),
+                isolated_solid: None,
             });
         }
         let bounds: Vec<Aabb> = primitives.iter().map(|p| p.shape.bounds()).collect();
         let (bvh, order) = Bvh::build(&bounds);
         let primitives: Vec<Primitive> = order.iter().map(|&i| primitives[i as usize]).collect();
+        mark_isolated_solids(&primitives, &bvh, &mut objects);
         let any_transmission = objects.iter().any(|o| o.material.transparency > 0.0);
         let light_buffers = scene
             .lights
@@ -181,6 +188,23 @@ impl PreparedScene {
             Some(hit.t)
         });
         best
+    }
+
+    /// The nearest hit after `t_min` on `primitive`, an object's `isolated_solid`, of a ray
+    /// that starts inside that solid: when it is Some, it is what `intersect(q, t_min, ∞)`
+    /// finds. (Any other primitive's hit would lie on the segment from the origin to this
+    /// exit, which is inside the solid's box, where no other box comes.) None, when the
+    /// origin was not inside after all, leaves the answer to `intersect`.
+    #[inline]
+    pub fn intersect_inside(
+        &self,
+        primitive: u32,
+        q: &RayQuery,
+        t_min: f32,
+    ) -> Option<(ShapeHit, u32)> {
+        let shape = &self.primitives[primitive as usize].shape;
+        let hit = shape.intersect_after(q, t_min, f32::INFINITY)?;
+        Some((hit, primitive))
     }
 
     /// The nearest hit among `candidates`, which hold every primitive the ray can reach,
@@ -221,17 +245,17 @@ impl PreparedScene {
     pub fn light_reaching(
         &self,
         light: usize,
-        origin: Vec3,
+        origin: Vec3A,
         leaving: Option<u32>,
         light_buffer: bool,
-    ) -> Vec3 {
-        let to_light = self.lights[light].position - origin;
+    ) -> Vec3A {
+        let to_light = Vec3A::from(self.lights[light].position) - origin;
         // The shadow ray ends exactly at the light: t = 1 on (light − origin).
         let shadow = |to_light| RayQuery::new(Ray::new(origin, to_light));
-        if light_buffer && let Some(listed) = self.light_buffers[light].at(-to_light) {
+        if light_buffer && let Some(listed) = self.light_buffers[light].at((-to_light).into()) {
             let distance_sq = to_light.length_squared();
             let mut q = None;
-            let mut light = Vec3::ONE;
+            let mut light = Vec3A::ONE;
             for o in listed {
                 if o.min_distance_sq >= distance_sq {
                     break; // this box and every later one start beyond the origin
@@ -253,8 +277,8 @@ impl PreparedScene {
     /// The fraction of light that reaches the end of the segment (0, t_max): zero behind
     /// any opaque surface, and tinted by every transparent surface crossed.
     #[inline]
-    pub fn transmittance(&self, q: &RayQuery, t_max: f32) -> Vec3 {
-        let mut light = Vec3::ONE;
+    pub fn transmittance(&self, q: &RayQuery, t_max: f32) -> Vec3A {
+        let mut light = Vec3A::ONE;
         self.bvh
             .visit(q, t_max, |i| self.pass_through(i, q, t_max, &mut light));
         light
@@ -263,11 +287,11 @@ impl PreparedScene {
     /// Filters `light` by what primitive `i` lets through along the segment (0, t_max);
     /// false once no light is left.
     #[inline(always)]
-    fn pass_through(&self, i: u32, q: &RayQuery, t_max: f32, light: &mut Vec3) -> bool {
+    fn pass_through(&self, i: u32, q: &RayQuery, t_max: f32, light: &mut Vec3A) -> bool {
         let prim = &self.primitives[i as usize];
         if !self.any_transmission {
             if prim.shape.intersect(q, t_max).is_some() {
-                *light = Vec3::ZERO;
+                *light = Vec3A::ZERO;
                 return false;
             }
             return true;
@@ -279,10 +303,51 @@ impl PreparedScene {
             if crossings == 2 {
                 *light *= filter;
             }
-            if *light == Vec3::ZERO {
+            if *light == Vec3A::ZERO {
                 return false;
             }
         }
         true
+    }
+}
+
+/// How far apart (relative to the size and the coordinates of a solid's box) another box
+/// must stay for the solid to count as isolated: far beyond the rounding of a hit point or a
+/// ray origin (a few ulps), so a rounded hit on another primitive cannot land inside.
+const ISOLATION_MARGIN: f32 = 1e-4;
+
+/// Sets `isolated_solid` for every object that qualifies (see `ObjectData`).
+fn mark_isolated_solids(primitives: &[Primitive], bvh: &Bvh, objects: &mut [ObjectData]) {
+    let mut sole: Vec<Option<u32>> = vec![None; objects.len()];
+    let mut count = vec![0u32; objects.len()];
+    for (index, primitive) in primitives.iter().enumerate() {
+        let object = primitive.object as usize;
+        count[object] += 1;
+        if matches!(primitive.shape, Shape::Sphere(_) | Shape::Cylinder(_)) {
+            sole[object] = Some(index as u32);
+        }
+    }
+    for (object, data) in objects.iter_mut().enumerate() {
+        let Some(index) = sole[object].filter(|_| count[object] == 1) else {
+            continue;
+        };
+        let bounds = primitives[index as usize].shape.bounds();
+        if !(bounds.min.is_finite() && bounds.max.is_finite()) {
+            continue;
+        }
+        let scale = bounds.min.abs().max(bounds.max.abs()).max_element()
+            + (bounds.max - bounds.min).max_element();
+        let margin = Vec3::splat(scale * ISOLATION_MARGIN);
+        let near = Aabb {
+            min: bounds.min - margin,
+            max: bounds.max + margin,
+        };
+        let mut alone = true;
+        bvh.overlapping(&near, |other| {
+            alone &= other == index || !primitives[other as usize].shape.bounds().overlaps(&near);
+        });
+        if alone {
+            data.isolated_solid = Some(index);
+        }
     }
 }
