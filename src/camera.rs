@@ -1,7 +1,7 @@
 //! The pinhole camera: where it stands, where it looks, and how wide it sees.
 
 use crate::geometry::Ray;
-use glam::Vec3;
+use glam::{Vec3, Vec3A};
 
 /// A pinhole camera. Angles are in degrees, measured about the `up` direction: pitch is the
 /// elevation above the plane perpendicular to `up`, yaw turns about `up`, positive to the
@@ -71,10 +71,10 @@ impl Camera {
         let tan_half = (self.vfov.to_radians() * 0.5).tan();
         let aspect = width as f32 / height as f32;
         CameraRays {
-            origin: self.eye,
-            forward,
-            right: right * (tan_half * aspect),
-            up: up * tan_half,
+            origin: self.eye.into(),
+            forward: forward.into(),
+            right: (right * (tan_half * aspect)).into(),
+            up: (up * tan_half).into(),
             inv_width: 1.0 / width as f32,
             inv_height: 1.0 / height as f32,
         }
@@ -96,10 +96,10 @@ fn reference_frame(up: Vec3) -> (Vec3, Vec3) {
 /// Turns image positions into primary rays.
 #[derive(Clone, Copy, Debug)]
 pub struct CameraRays {
-    origin: Vec3,
-    forward: Vec3,
-    right: Vec3,
-    up: Vec3,
+    origin: Vec3A,
+    forward: Vec3A,
+    right: Vec3A,
+    up: Vec3A,
     inv_width: f32,
     inv_height: f32,
 }
@@ -111,7 +111,9 @@ impl CameraRays {
         let sx = 2.0 * x * self.inv_width - 1.0;
         let sy = 1.0 - 2.0 * y * self.inv_height;
         let dir = self.forward + self.right * sx + self.up * sy;
-        Ray::new(self.origin, dir.normalize())
+        // dir · (1 / |dir|), as `Vec3::normalize` computes it; `Vec3A::normalize` divides
+        // instead, which rounds differently.
+        Ray::new(self.origin, dir * dir.length_recip())
     }
 
     /// Where the ray through point `p` crosses the image, in pixels from the top-left
@@ -134,11 +136,11 @@ impl CameraRays {
 
     /// The camera's position and viewing direction (unit).
     pub fn eye(&self) -> Vec3 {
-        self.origin
+        self.origin.into()
     }
 
     pub fn forward(&self) -> Vec3 {
-        self.forward
+        self.forward.into()
     }
 }
 

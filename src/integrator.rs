@@ -218,7 +218,7 @@ impl<'a> Integrator<'a> {
             } else {
                 prim.shape.uv(&surface, &hit)
             };
-            let base = Vec3A::from(material.texture.eval(uv, (p - object.origin).into()));
+            let base = material.texture.eval(uv, p - object.origin);
             if !material.texture.needs_uv() {
                 // A pattern's colour names its cell (an image varies within cells instead).
                 self.signature = mix(self.signature, base.x.to_bits() ^ base.z.to_bits());

@@ -1,7 +1,7 @@
 //! Surface colour as a function of position: solid colours, the seed's procedural patterns,
 //! and bilinearly filtered images.
 
-use glam::Vec3;
+use glam::{Vec3, Vec3A};
 use std::path::Path;
 use std::sync::Arc;
 
@@ -33,14 +33,14 @@ impl ImageTexture {
     }
 
     #[inline]
-    fn texel(&self, x: u32, y: u32) -> Vec3 {
+    fn texel(&self, x: u32, y: u32) -> Vec3A {
         let [r, g, b] = self.texels[(y * self.width + x) as usize];
-        Vec3::new(r as f32, g as f32, b as f32) * (1.0 / 255.0)
+        Vec3A::new(r as f32, g as f32, b as f32) * (1.0 / 255.0)
     }
 
     /// Bilinear lookup at (u, v), u wrapping around (longitude), v clamped (latitude);
     /// texel (i, j) has its centre at ((i + ½) / width, (j + ½) / height).
-    pub fn sample(&self, u: f32, v: f32) -> Vec3 {
+    pub fn sample(&self, u: f32, v: f32) -> Vec3A {
         let x = (u - floor_to_int(u) as f32) * self.width as f32 - 0.5;
         let y = v.clamp(0.0, 1.0) * self.height as f32 - 0.5;
         let (x0, y0) = (floor_to_int(x), floor_to_int(y));
@@ -100,21 +100,21 @@ pub enum Texture {
 
 impl Texture {
     #[inline]
-    pub fn eval(&self, uv: (f32, f32), local: Vec3) -> Vec3 {
+    pub fn eval(&self, uv: (f32, f32), local: Vec3A) -> Vec3A {
         match self {
-            Texture::Solid(c) => *c,
+            Texture::Solid(c) => (*c).into(),
             Texture::Checker { colors, size, axes } => {
-                let cell = local * *axes / *size;
+                let cell = local * Vec3A::from(*axes) / *size;
                 let sum = floor_to_int(cell.x) + floor_to_int(cell.y) + floor_to_int(cell.z);
-                colors[(sum & 1) as usize]
+                colors[(sum & 1) as usize].into()
             }
             Texture::Stripes {
                 colors,
                 width,
                 direction,
             } => {
-                let band = floor_to_int(local.dot(*direction) / *width);
-                colors[(band & 1) as usize]
+                let band = floor_to_int(local.dot((*direction).into()) / *width);
+                colors[(band & 1) as usize].into()
             }
             Texture::Image(img) => img.sample(uv.0, uv.1),
         }
@@ -170,23 +170,23 @@ mod tests {
     #[test]
     fn texel_centres_return_their_colour() {
         let t = four_texels();
-        assert_eq!(t.sample(0.25, 0.25), Vec3::X);
-        assert_eq!(t.sample(0.75, 0.25), Vec3::Y);
-        assert_eq!(t.sample(0.25, 0.75), Vec3::Z);
-        assert_eq!(t.sample(0.75, 0.75), Vec3::ONE);
+        assert_eq!(t.sample(0.25, 0.25), Vec3A::X);
+        assert_eq!(t.sample(0.75, 0.25), Vec3A::Y);
+        assert_eq!(t.sample(0.25, 0.75), Vec3A::Z);
+        assert_eq!(t.sample(0.75, 0.75), Vec3A::ONE);
     }
 
     #[test]
     fn bilinear_blends_and_wraps_in_u() {
         let t = four_texels();
         let mid = t.sample(0.5, 0.25);
-        assert!((mid - Vec3::new(0.5, 0.5, 0.0)).length() < 1e-6);
+        assert!((mid - Vec3A::new(0.5, 0.5, 0.0)).length() < 1e-6);
         // u = 0 lies halfway between the last column and the first.
         let seam = t.sample(0.0, 0.25);
-        assert!((seam - Vec3::new(0.5, 0.5, 0.0)).length() < 1e-6);
+        assert!((seam - Vec3A::new(0.5, 0.5, 0.0)).length() < 1e-6);
         // v is clamped at the poles.
-        assert_eq!(t.sample(0.25, 0.0), Vec3::X);
-        assert_eq!(t.sample(0.25, 1.0), Vec3::Z);
+        assert_eq!(t.sample(0.25, 0.0), Vec3A::X);
+        assert_eq!(t.sample(0.25, 1.0), Vec3A::Z);
     }
 
     #[test]
@@ -196,12 +196,12 @@ mod tests {
             size: 5.0,
             axes: Vec3::new(1.0, 0.0, 1.0),
         };
-        assert_eq!(c.eval((0.0, 0.0), Vec3::new(1.0, 0.0, 1.0)), Vec3::ZERO);
-        assert_eq!(c.eval((0.0, 0.0), Vec3::new(6.0, 0.0, 1.0)), Vec3::ONE);
-        assert_eq!(c.eval((0.0, 0.0), Vec3::new(6.0, 0.0, 6.0)), Vec3::ZERO);
-        assert_eq!(c.eval((0.0, 0.0), Vec3::new(-1.0, 0.0, 1.0)), Vec3::ONE);
+        assert_eq!(c.eval((0.0, 0.0), Vec3A::new(1.0, 0.0, 1.0)), Vec3A::ZERO);
+        assert_eq!(c.eval((0.0, 0.0), Vec3A::new(6.0, 0.0, 1.0)), Vec3A::ONE);
+        assert_eq!(c.eval((0.0, 0.0), Vec3A::new(6.0, 0.0, 6.0)), Vec3A::ZERO);
+        assert_eq!(c.eval((0.0, 0.0), Vec3A::new(-1.0, 0.0, 1.0)), Vec3A::ONE);
         // y does not take part: a point just below the floor keeps its cell.
-        assert_eq!(c.eval((0.0, 0.0), Vec3::new(1.0, -1e-7, 1.0)), Vec3::ZERO);
+        assert_eq!(c.eval((0.0, 0.0), Vec3A::new(1.0, -1e-7, 1.0)), Vec3A::ZERO);
     }
 
     #[test]
@@ -236,8 +236,8 @@ mod tests {
             width: 2.0,
             direction: Vec3::X,
         };
-        assert_eq!(s.eval((0.0, 0.0), Vec3::new(1.0, 50.0, -3.0)), Vec3::X);
-        assert_eq!(s.eval((0.0, 0.0), Vec3::new(3.0, -7.0, 9.0)), Vec3::Y);
-        assert_eq!(s.eval((0.0, 0.0), Vec3::new(-1.0, 0.0, 0.0)), Vec3::Y);
+        assert_eq!(s.eval((0.0, 0.0), Vec3A::new(1.0, 50.0, -3.0)), Vec3A::X);
+        assert_eq!(s.eval((0.0, 0.0), Vec3A::new(3.0, -7.0, 9.0)), Vec3A::Y);
+        assert_eq!(s.eval((0.0, 0.0), Vec3A::new(-1.0, 0.0, 0.0)), Vec3A::Y);
     }
 }
