@@ -31,14 +31,26 @@ impl Sphere {
     /// it without a better error bound (docs/numerics.md).
     #[inline]
     pub fn roots(&self, ray: &Ray) -> Option<(f32, f32)> {
+        self.roots_unless_receding(ray, false)
+    }
+
+    /// `roots`, or None early when `receding` is set and the ray starts outside the sphere
+    /// and moves away from its centre (c > 0, β ≤ 0): both roots are then ≤ 0, so no test
+    /// for t > 0 can accept either, and the division and square root are skipped. This is
+    /// every reflected ray leaving the sphere's own outside.
+    #[inline(always)]
+    fn roots_unless_receding(&self, ray: &Ray, receding: bool) -> Option<(f32, f32)> {
         let f = ray.origin - self.center;
         let d = ray.dir;
         let a = d.length_squared();
         let beta = -f.dot(d);
-        let f_perp = f + d * (beta / a);
         let r2 = self.radius * self.radius;
-        let disc = a * (r2 - f_perp.length_squared());
         let c = f.length_squared() - r2;
+        if receding && c > 0.0 && beta <= 0.0 {
+            return None;
+        }
+        let f_perp = f + d * (beta / a);
+        let disc = a * (r2 - f_perp.length_squared());
         stable_quadratic_roots(a, beta, c, disc)
     }
 
@@ -51,7 +63,8 @@ impl Sphere {
     /// The nearest t in (t_min, t_max).
     #[inline]
     pub fn intersect_after(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<f32> {
-        let (t0, t1) = self.roots(ray)?;
+        debug_assert!(t_min >= 0.0);
+        let (t0, t1) = self.roots_unless_receding(ray, true)?;
         if t0 > t_min && t0 < t_max {
             Some(t0)
         } else if t1 > t_min && t1 < t_max {
@@ -64,7 +77,7 @@ impl Sphere {
     /// How many times the segment (0, t_max) of the ray crosses the surface.
     #[inline]
     pub fn crossings(&self, ray: &Ray, t_max: f32) -> u32 {
-        match self.roots(ray) {
+        match self.roots_unless_receding(ray, true) {
             Some((t0, t1)) => (t0 > 0.0 && t0 < t_max) as u32 + (t1 > 0.0 && t1 < t_max) as u32,
             None => 0,
         }
@@ -149,6 +162,24 @@ mod tests {
         let (_, n, _) = s.surface(&ray, t);
         assert_eq!(n, Vec3A::Y);
         assert_eq!(s.crossings(&ray, f32::INFINITY), 1);
+    }
+
+    #[test]
+    fn a_receding_ray_is_rejected_but_its_roots_remain() {
+        let s = unit_sphere_at(-5.0);
+        // Leaving the sphere's near side outwards, and passing it by going away.
+        for ray in [
+            Ray::new(Vec3::new(0.0, 0.0, -4.0 + 1e-6), Vec3::Z),
+            Ray::new(Vec3::new(0.5, 0.0, -3.0), Vec3::new(0.1, 0.0, 1.0)),
+        ] {
+            let (t0, t1) = s.roots(&ray).unwrap();
+            assert!(t0 < 0.0 && t1 < 0.0, "{t0} {t1}");
+            assert_eq!(s.intersect(&ray, f32::INFINITY), None);
+            assert_eq!(s.crossings(&ray, f32::INFINITY), 0);
+        }
+        // Moving away from the centre but starting inside: the far side is still ahead.
+        let inside = Ray::new(Vec3::new(0.0, 0.0, -4.5), Vec3::Z);
+        assert_eq!(s.intersect(&inside, f32::INFINITY), Some(0.5));
     }
 
     #[test]
