@@ -53,15 +53,45 @@ impl Sampler {
     /// The position of subsample `k` inside pixel (x, y), in [0, 1)².
     #[inline]
     pub fn offset(&self, x: u32, y: u32, k: u32) -> (f32, f32) {
+        self.row(y, k).offset(x)
+    }
+
+    /// Subsample `k` of the pixels of row `y`: what depends only on the row and `k` is
+    /// hashed once, not once per pixel.
+    #[inline]
+    pub fn row(&self, y: u32, k: u32) -> RowSampler<'_> {
+        RowSampler {
+            sampler: self,
+            shift_seed: hash(y ^ 0x5bd1_e995),
+            jitter_seed: hash(y ^ hash(k)),
+            cell: self.order[k as usize],
+        }
+    }
+}
+
+/// `Sampler::row`: subsample k of every pixel of one row.
+#[derive(Clone, Copy, Debug)]
+pub struct RowSampler<'a> {
+    sampler: &'a Sampler,
+    shift_seed: u32,
+    jitter_seed: u32,
+    /// Cell (column, row) of subsample k before the pixel's own shift.
+    cell: (u32, u32),
+}
+
+impl RowSampler<'_> {
+    /// The position of this row's subsample inside pixel `x`, in [0, 1)².
+    #[inline]
+    pub fn offset(&self, x: u32) -> (f32, f32) {
         // Each pixel walks the same order, moved by its own hashed shift, so that a part-way
         // image is unbiased noise rather than the whole picture shifted by a fraction of a
         // pixel. For power-of-two N the shift is digital (cell bits XOR a random number):
         // it maps every box of the sampler's stratification onto another, so prefixes stay
         // stratified. Otherwise it is a rotation on the torus in whole cells
         // (Cranley–Patterson), which keeps the farthest-point spacing.
-        let n = self.n;
-        let shift = hash(x.wrapping_mul(0x9e37_79b1) ^ hash(y ^ 0x5bd1_e995));
-        let (cx, cy) = self.order[k as usize];
+        let n = self.sampler.n;
+        let shift = hash(x.wrapping_mul(0x9e37_79b1) ^ self.shift_seed);
+        let (cx, cy) = self.cell;
         // 16 hash bits per axis mapped onto 0..n by a multiply and a shift (Lemire's
         // reduction); `shift % n` costs an integer division, as much as the rest of this.
         let (sx, sy) = (((shift & 0xffff) * n) >> 16, ((shift >> 16) * n) >> 16);
@@ -72,10 +102,10 @@ impl Sampler {
             (wrap(cx + sx), wrap(cy + sy))
         };
         let inv = 1.0 / n as f32;
-        let (jx, jy) = match self.layout {
+        let (jx, jy) = match self.sampler.layout {
             SampleLayout::Grid => (0.5, 0.5),
             SampleLayout::Stratified => {
-                let h = hash(x ^ hash(y ^ hash(k)));
+                let h = hash(x ^ self.jitter_seed);
                 (unit(h), unit(hash(h)))
             }
         };

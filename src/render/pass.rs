@@ -51,27 +51,32 @@ pub fn render_pass(
                 .with_self_intersection(settings.self_intersection)
                 .with_light_buffer(settings.light_buffer);
             let mut traced = 0u64;
-            for (i, sum) in pixels.iter_mut().enumerate() {
-                let index = band_index * band + i;
-                if active.is_some_and(|a| !a[index]) {
-                    continue;
+            for (row, row_pixels) in pixels.chunks_mut(width).enumerate() {
+                let y = band_index * BAND_ROWS + row;
+                let row_active = active.map(|a| &a[y * width..(y + 1) * width]);
+                let subsamples = sampler.row(y as u32, pass);
+                let y = y as u32;
+                for (x, sum) in row_pixels.iter_mut().enumerate() {
+                    if row_active.is_some_and(|a| !a[x]) {
+                        continue;
+                    }
+                    let x = x as u32;
+                    let ray = || {
+                        let (dx, dy) = subsamples.offset(x);
+                        rays.ray(x as f32 + dx, y as f32 + dy)
+                    };
+                    // An empty tile needs neither a subsample position nor a ray.
+                    let sample = match tiles.and_then(|t| t.at(x, y)) {
+                        Some([]) => integrator.trace_primary_miss(),
+                        Some(candidates) => integrator.trace_primary_among(ray(), candidates),
+                        None => integrator.trace_primary(ray()),
+                    };
+                    sum.add(
+                        sample.color.clamp(glam::Vec3::ZERO, glam::Vec3::ONE),
+                        sample.signature,
+                    );
+                    traced += 1;
                 }
-                let (x, y) = ((index % width) as u32, (index / width) as u32);
-                let ray = || {
-                    let (dx, dy) = sampler.offset(x, y, pass);
-                    rays.ray(x as f32 + dx, y as f32 + dy)
-                };
-                // An empty tile needs neither a subsample position nor a ray.
-                let sample = match tiles.and_then(|t| t.at(x, y)) {
-                    Some([]) => integrator.trace_primary_miss(),
-                    Some(candidates) => integrator.trace_primary_among(ray(), candidates),
-                    None => integrator.trace_primary(ray()),
-                };
-                sum.add(
-                    sample.color.clamp(glam::Vec3::ZERO, glam::Vec3::ONE),
-                    sample.signature,
-                );
-                traced += 1;
             }
             Some((integrator.counts, traced))
         })
