@@ -105,7 +105,7 @@ fn earth_centre_carries_the_texture_colour_lit_by_phong() {
     else {
         panic!("the earth is image textured");
     };
-    let texel = image.sample(u, v);
+    let texel = glam::Vec3::from(image.sample(u, v));
     let l = (scene.lights[0].position - hit).normalize();
     let expected = texel * (0.2 + n.dot(l).max(0.0));
     assert!(
