@@ -127,7 +127,7 @@ impl<'a> Integrator<'a> {
     /// The colour seen along a primary ray (unit direction), and its signature.
     #[inline]
     pub fn trace_primary(&mut self, ray: Ray) -> Sample {
-        self.primary(|this| this.trace(RayQuery::new(ray), 0.0, None, 0, 0, 1.0))
+        self.primary(|this| this.trace(&RayQuery::new(ray), 0.0, None, 0, 0, 1.0))
     }
 
     /// `trace_primary` for a ray that can only hit `candidates` first (first_hit.rs): the
@@ -136,8 +136,10 @@ impl<'a> Integrator<'a> {
     pub fn trace_primary_among(&mut self, ray: Ray, candidates: &[Candidate]) -> Sample {
         self.primary(|this| {
             let q = RayQuery::new(ray);
-            let found = this.scene.intersect_among(&q, candidates);
-            this.shade(found.map(|hit| (q, hit)), 0, 0, 1.0)
+            match this.scene.intersect_among(&q, candidates) {
+                Some((hit, index)) => this.shade(&q, &hit, index, 0, 0, 1.0),
+                None => this.miss(),
+            }
         })
     }
 
@@ -145,7 +147,7 @@ impl<'a> Integrator<'a> {
     /// background, with the signature of a miss, and no ray to build.
     #[inline]
     pub fn trace_primary_miss(&mut self) -> Sample {
-        self.primary(|this| this.shade(None, 0, 0, 1.0))
+        self.primary(|this| this.miss())
     }
 
     /// Counts one primary ray and returns the colour `trace` finds with the signature it
@@ -166,7 +168,7 @@ impl<'a> Integrator<'a> {
     /// solid, found without the BVH.
     fn trace(
         &mut self,
-        q: RayQuery,
+        q: &RayQuery,
         t_min: f32,
         inside: Option<u32>,
         depth: u32,
@@ -175,30 +177,40 @@ impl<'a> Integrator<'a> {
     ) -> Vec3A {
         let scene = self.scene;
         let found = inside
-            .and_then(|solid| scene.intersect_inside(solid, &q, t_min))
-            .or_else(|| scene.intersect(&q, t_min, f32::INFINITY));
-        self.shade(found.map(|hit| (q, hit)), depth, straight, weight)
+            .and_then(|solid| scene.intersect_inside(solid, q, t_min))
+            .or_else(|| scene.intersect(q, t_min, f32::INFINITY));
+        match found {
+            Some((hit, index)) => self.shade(q, &hit, index, depth, straight, weight),
+            None => self.miss(),
+        }
     }
 
-    /// The colour that ray `q` brings back from `hit` (None: it left the scene).
+    /// The colour of a ray that leaves the scene.
+    #[inline]
+    fn miss(&mut self) -> Vec3A {
+        self.signature = mix(self.signature, u32::MAX);
+        self.scene.background.into()
+    }
+
+    /// The colour that ray `q` brings back from `hit` on primitive `index`. (The query and
+    /// the hit are passed by reference: moved by value, they were copied through the stack
+    /// on every call.)
     fn shade(
         &mut self,
-        hit: Option<(RayQuery, (ShapeHit, u32))>,
+        q: &RayQuery,
+        hit: &ShapeHit,
+        index: u32,
         depth: u32,
         straight: u32,
         weight: f32,
     ) -> Vec3A {
         let scene = self.scene;
-        let Some((q, (hit, index))) = hit else {
-            self.signature = mix(self.signature, u32::MAX);
-            return scene.background.into();
-        };
         let ray = q.ray;
         self.signature = mix(self.signature, index ^ (hit.detail.part() << 24));
         let prim = &scene.primitives[index as usize];
         let object = &scene.objects[prim.object as usize];
         let material = &object.material;
-        let surface = prim.shape.surface(&q, &hit);
+        let surface = prim.shape.surface(q, hit);
         let entering = ray.dir.dot(surface.normal) < 0.0;
         // Shade the side the ray arrives on.
         let n = if entering {
@@ -216,7 +228,7 @@ impl<'a> Integrator<'a> {
             } else if let Some(planar) = object.planar_uv {
                 planar.uv(p)
             } else {
-                prim.shape.uv(&surface, &hit)
+                prim.shape.uv(&surface, hit)
             };
             let base = material.texture.eval(uv, p - object.origin);
             if !material.texture.needs_uv() {
@@ -280,7 +292,7 @@ impl<'a> Integrator<'a> {
             self.counts.secondary += 1;
             let reflected = RayQuery::new(Ray::new(origin, dir));
             let inside = inside(dir);
-            color += self.trace(reflected, 0.0, inside, depth + 1, 0, weight * reflectivity)
+            color += self.trace(&reflected, 0.0, inside, depth + 1, 0, weight * reflectivity)
                 * reflectivity;
         }
         let transparency = material.transparency;
@@ -299,7 +311,7 @@ impl<'a> Integrator<'a> {
                     let origin = self.leave(&surface, n, dir);
                     self.counts.secondary += 1;
                     let q = RayQuery::new(Ray::new(origin, dir));
-                    self.trace(q, 0.0, inside(dir), depth + 1, 0, weight * transparency)
+                    self.trace(&q, 0.0, inside(dir), depth + 1, 0, weight * transparency)
                 }
                 // Unbent light goes on along the very same ray, past this hit: exact, so an
                 // eta-1 clear object leaves the image untouched.
