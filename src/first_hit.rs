@@ -10,6 +10,7 @@
 //! back to the BVH, which then does better.
 
 use crate::camera::CameraRays;
+use crate::geometry::Shape;
 use crate::scene::PreparedScene;
 use glam::DVec3;
 
@@ -80,9 +81,17 @@ impl FirstHitTiles {
                 primitive: index as u32,
                 min_t: lower_bound_distance(eye, lo, hi),
             };
+            // A triangle covers only part of its box's rectangle: half of it, for each of
+            // the two triangles of a quad such as the seed's floor.
+            let outline = match primitive.shape {
+                Shape::Triangle(t) => projected_triangle(&t, eye, forward, rays, width, height),
+                _ => None,
+            };
             for ty in y0..=y1 {
                 for tx in x0..=x1 {
-                    per_tile[(ty * tiles_x + tx) as usize].push(candidate);
+                    if outline.is_none_or(|o| o.may_cover_tile(tx, ty)) {
+                        per_tile[(ty * tiles_x + tx) as usize].push(candidate);
+                    }
                 }
             }
         }
@@ -216,6 +225,76 @@ fn tile_rectangle(
     Some((x0, y0, x1, y1))
 }
 
+/// A triangle's outline on the image, in pixels, as three edge functions that are ≥ 0
+/// inside it.
+#[derive(Clone, Copy, Debug)]
+struct ProjectedTriangle {
+    /// Edge i: (a, b, c) with a·x + b·y + c ≥ 0 on the triangle's side of the edge.
+    edges: [(f64, f64, f64); 3],
+}
+
+impl ProjectedTriangle {
+    /// Whether any point of tile (tx, ty), widened by `MARGIN_PIXELS`, may lie inside: false
+    /// only when the whole widened tile lies outside one edge.
+    fn may_cover_tile(&self, tx: u32, ty: u32) -> bool {
+        let x0 = (tx * TILE) as f64 - MARGIN_PIXELS;
+        let y0 = (ty * TILE) as f64 - MARGIN_PIXELS;
+        let side = TILE as f64 + 2.0 * MARGIN_PIXELS;
+        let (x1, y1) = (x0 + side, y0 + side);
+        self.edges.iter().all(|&(a, b, c)| {
+            // The corner farthest along the edge's inward normal.
+            let x = if a > 0.0 { x1 } else { x0 };
+            let y = if b > 0.0 { y1 } else { y0 };
+            a * x + b * y + c >= 0.0
+        })
+    }
+}
+
+/// The outline of triangle `t` on the image, or None when it cannot be used: a corner is
+/// not well in front of the eye (the projection of the triangle is then not the triangle of
+/// the projected corners), or the triangle is seen edge-on. Like the boxes, it is widened
+/// by `MARGIN_PIXELS`, far beyond the rounding of a camera ray or of the triangle test.
+fn projected_triangle(
+    t: &crate::geometry::Triangle,
+    eye: DVec3,
+    forward: DVec3,
+    rays: &CameraRays,
+    width: u32,
+    height: u32,
+) -> Option<ProjectedTriangle> {
+    let mut corners = [(0.0, 0.0); 3];
+    for (corner, p) in corners.iter_mut().zip(t.p) {
+        let p = glam::Vec3::from(p).as_dvec3();
+        let v = p - eye;
+        if v.dot(forward) <= NEAR_PLANE * v.length() {
+            return None;
+        }
+        *corner = rays.project(p, width, height)?;
+    }
+    let [(ax, ay), (bx, by), (cx, cy)] = corners;
+    let area = (bx - ax) * (cy - ay) - (by - ay) * (cx - ax);
+    // Edge-on, or nearly: the edge functions' signs would mean nothing.
+    let extent = [bx - ax, cx - ax, by - ay, cy - ay]
+        .iter()
+        .fold(0.0f64, |m, d| m.max(d.abs()));
+    if area.is_nan() || area.abs() <= 1e-9 * extent * extent {
+        return None;
+    }
+    let sign = area.signum();
+    let edge = |(px, py): (f64, f64), (qx, qy): (f64, f64)| {
+        // (q − p) × (r − p) ≥ 0 for r on the inside (counter-clockwise when sign > 0).
+        let (a, b) = (-(qy - py) * sign, (qx - px) * sign);
+        (a, b, -(a * px + b * py))
+    };
+    Some(ProjectedTriangle {
+        edges: [
+            edge(corners[0], corners[1]),
+            edge(corners[1], corners[2]),
+            edge(corners[2], corners[0]),
+        ],
+    })
+}
+
 /// The distance from `eye` to the box lo..hi, rounded down so that no computed hit
 /// distance on a primitive inside the box is smaller.
 fn lower_bound_distance(eye: DVec3, lo: DVec3, hi: DVec3) -> f32 {
@@ -272,6 +351,37 @@ mod tests {
         assert_matches_bvh(&scene, camera, 200, 150);
         // Sizes that are not multiples of the tile side leave partial tiles at the edges.
         assert_matches_bvh(&scene, camera, 203, 77);
+    }
+
+    #[test]
+    fn a_floor_tile_lists_only_the_floor_triangle_it_sees() {
+        // The floor is a quad split along a diagonal into two triangles whose boxes are
+        // the same: only tiles near the diagonal's image list both.
+        let (scene, camera) = seed();
+        let floor = scene
+            .objects
+            .iter()
+            .position(|o| o.name == "floor")
+            .unwrap() as u32;
+        let triangles: Vec<u32> = (0..scene.primitives.len() as u32)
+            .filter(|&i| scene.primitives[i as usize].object == floor)
+            .collect();
+        assert_eq!(triangles.len(), 2);
+        let (w, h) = (200, 150);
+        let tiles = FirstHitTiles::new(&scene, &camera.rays(w, h), w, h);
+        let (mut one, mut both) = (0, 0);
+        for ty in 0..h.div_ceil(TILE) {
+            for tx in 0..w.div_ceil(TILE) {
+                let listed = tiles.at(tx * TILE, ty * TILE).unwrap();
+                let n = triangles
+                    .iter()
+                    .filter(|&&t| listed.iter().any(|c| c.primitive == t))
+                    .count();
+                one += (n == 1) as u32;
+                both += (n == 2) as u32;
+            }
+        }
+        assert!(both > 0 && one > 4 * both, "one {one}, both {both}");
     }
 
     #[test]
