@@ -478,7 +478,7 @@ fn headline(
             },
         ),
         (
-            "BVH (secondary and shadow rays test every primitive)",
+            "BVH (secondary rays test every primitive; shadow rays keep the light buffer)",
             Arc::new(flat),
             all_on,
         ),
