@@ -189,7 +189,7 @@ impl<'a> Integrator<'a> {
     #[inline]
     fn miss(&mut self) -> Vec3A {
         self.signature = mix(self.signature, u32::MAX);
-        self.scene.background.into()
+        self.scene.background
     }
 
     /// The colour that ray `q` brings back from `hit` on primitive `index`. (The query and
@@ -235,7 +235,7 @@ impl<'a> Integrator<'a> {
                 // A pattern's colour names its cell (an image varies within cells instead).
                 self.signature = mix(self.signature, base.x.to_bits() ^ base.z.to_bits());
             }
-            let mut diffuse = base * Vec3A::from(scene.ambient) * material.ambient;
+            let mut diffuse = base * scene.ambient * material.ambient;
             let mut specular = Vec3A::ZERO;
             for (light_index, light) in scene.lights.iter().enumerate() {
                 let to_light = Vec3A::from(light.position) - p;

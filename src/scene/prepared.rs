@@ -79,8 +79,9 @@ pub struct PreparedScene {
     pub lights: Vec<PointLight>,
     /// For each light, what a shadow ray toward it may meet, by direction (light_buffer.rs).
     pub light_buffers: Vec<LightBuffer>,
-    pub ambient: Vec3,
-    pub background: Vec3,
+    /// Read at every hit and miss, so kept in the hot path's SIMD form.
+    pub ambient: Vec3A,
+    pub background: Vec3A,
     pub max_depth: u32,
     /// Whether any surface transmits light; when none does, shadow rays stop at the first
     /// occluder without looking at materials.
@@ -169,8 +170,8 @@ impl PreparedScene {
             objects,
             lights: scene.lights.clone(),
             light_buffers,
-            ambient: scene.ambient,
-            background: scene.background,
+            ambient: scene.ambient.into(),
+            background: scene.background.into(),
             max_depth: scene.render.max_depth,
             any_transmission,
         }
