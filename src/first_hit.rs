@@ -20,6 +20,10 @@ pub const TILE: u32 = 8;
 /// A tile covered by more boxes than this is left to the BVH.
 pub const MAX_CANDIDATES: usize = 12;
 
+/// How many tiles each primitive may be listed in on average, beyond what the tiles' own
+/// capacity (`MAX_CANDIDATES` each) allows, before every tile is left to the BVH.
+const LISTINGS_PER_PRIMITIVE: u64 = 64;
+
 /// Image positions are projected in f64 and each box's extent is widened by this many
 /// pixels, far more than the f32 rounding of a camera ray (about 10⁻⁶ of the field of
 /// view), so no subsample position in a pixel can reach a box that was not listed.
@@ -64,17 +68,45 @@ impl FirstHitTiles {
 
         // Each primitive's tile rectangle (inclusive), or None when no primary ray can
         // reach it.
+        let rectangles: Vec<Option<(u32, u32, u32, u32)>> = scene
+            .primitives
+            .iter()
+            .map(|primitive| {
+                let bounds = primitive.shape.bounds();
+                let (lo, hi) = (bounds.min.as_dvec3(), bounds.max.as_dvec3());
+                if !(lo.is_finite() && hi.is_finite()) {
+                    Some((0, 0, tiles_x - 1, tiles_y - 1))
+                } else {
+                    tile_rectangle(lo, hi, eye, forward, rays, width, height)
+                }
+            })
+            .collect();
+        // The lists' total length is at most the rectangles' total area. Past the budget,
+        // crowds of overlapping boxes would cost time and memory that grow with their
+        // square, and every tile would be left to the BVH anyway.
+        let listed: u64 = rectangles
+            .iter()
+            .flatten()
+            .map(|&(x0, y0, x1, y1)| (x1 - x0 + 1) as u64 * (y1 - y0 + 1) as u64)
+            .sum();
+        let budget = (MAX_CANDIDATES * tile_count) as u64
+            + LISTINGS_PER_PRIMITIVE * scene.primitives.len() as u64;
+        if listed > budget {
+            return Self {
+                tiles_x,
+                tiles_y,
+                start: vec![0; tile_count + 1],
+                candidates: Vec::new(),
+                crowded: vec![true; tile_count],
+            };
+        }
+
         let mut per_tile: Vec<Vec<Candidate>> = vec![Vec::new(); tile_count];
-        for (index, primitive) in scene.primitives.iter().enumerate() {
+        for (index, (primitive, rectangle)) in scene.primitives.iter().zip(&rectangles).enumerate()
+        {
             let bounds = primitive.shape.bounds();
             let (lo, hi) = (bounds.min.as_dvec3(), bounds.max.as_dvec3());
-            let whole_image = (0, 0, tiles_x - 1, tiles_y - 1);
-            let rectangle = if !(lo.is_finite() && hi.is_finite()) {
-                Some(whole_image)
-            } else {
-                tile_rectangle(lo, hi, eye, forward, rays, width, height)
-            };
-            let Some((x0, y0, x1, y1)) = rectangle else {
+            let Some((x0, y0, x1, y1)) = *rectangle else {
                 continue;
             };
             let candidate = Candidate {

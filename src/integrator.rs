@@ -63,6 +63,29 @@ fn mix(signature: u32, value: u32) -> u32 {
 /// cycle and does not count towards the bounce limit; this many in a row end the path.
 const MAX_STRAIGHT_CROSSINGS: u32 = 64;
 
+/// Where a ray stands in its sample's tree: what it has spent and what it may still spend.
+#[derive(Clone, Copy, Debug)]
+struct Path {
+    /// Bounces (reflections, refractions) so far.
+    depth: u32,
+    /// Straight crossings in a row since the last bounce.
+    straight: u32,
+    /// What this ray's colour is multiplied by on its way to the pixel.
+    weight: f32,
+    /// How many more secondary rays this ray's subtree may spawn (limits::RAY_BUDGET for
+    /// the whole tree). Every ray spends one, so the recursion is at most this deep.
+    budget: u32,
+}
+
+impl Path {
+    const PRIMARY: Path = Path {
+        depth: 0,
+        straight: 0,
+        weight: 1.0,
+        budget: crate::limits::RAY_BUDGET,
+    };
+}
+
 /// How secondary rays avoid re-hitting the surface they start on.
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
 pub enum SelfIntersection {
@@ -127,7 +150,7 @@ impl<'a> Integrator<'a> {
     /// The colour seen along a primary ray (unit direction), and its signature.
     #[inline]
     pub fn trace_primary(&mut self, ray: Ray) -> Sample {
-        self.primary(|this| this.trace(&RayQuery::new(ray), 0.0, None, 0, 0, 1.0))
+        self.primary(|this| this.trace(&RayQuery::new(ray), 0.0, None, Path::PRIMARY))
     }
 
     /// `trace_primary` for a ray that can only hit `candidates` first (first_hit.rs): the
@@ -137,7 +160,7 @@ impl<'a> Integrator<'a> {
         self.primary(|this| {
             let q = RayQuery::new(ray);
             match this.scene.intersect_among(&q, candidates) {
-                Some((hit, index)) => this.shade(&q, &hit, index, 0, 0, 1.0),
+                Some((hit, index)) => this.shade(&q, &hit, index, Path::PRIMARY),
                 None => this.miss(),
             }
         })
@@ -166,21 +189,13 @@ impl<'a> Integrator<'a> {
     /// The colour along `q` beyond distance `t_min`. `inside` names the isolated solid
     /// (`ObjectData::isolated_solid`) the ray starts in, if any: its next hit is then on that
     /// solid, found without the BVH.
-    fn trace(
-        &mut self,
-        q: &RayQuery,
-        t_min: f32,
-        inside: Option<u32>,
-        depth: u32,
-        straight: u32,
-        weight: f32,
-    ) -> Vec3A {
+    fn trace(&mut self, q: &RayQuery, t_min: f32, inside: Option<u32>, path: Path) -> Vec3A {
         let scene = self.scene;
         let found = inside
             .and_then(|solid| scene.intersect_inside(solid, q, t_min))
             .or_else(|| scene.intersect(q, t_min, f32::INFINITY));
         match found {
-            Some((hit, index)) => self.shade(q, &hit, index, depth, straight, weight),
+            Some((hit, index)) => self.shade(q, &hit, index, path),
             None => self.miss(),
         }
     }
@@ -195,15 +210,13 @@ impl<'a> Integrator<'a> {
     /// The colour that ray `q` brings back from `hit` on primitive `index`. (The query and
     /// the hit are passed by reference: moved by value, they were copied through the stack
     /// on every call.)
-    fn shade(
-        &mut self,
-        q: &RayQuery,
-        hit: &ShapeHit,
-        index: u32,
-        depth: u32,
-        straight: u32,
-        weight: f32,
-    ) -> Vec3A {
+    fn shade(&mut self, q: &RayQuery, hit: &ShapeHit, index: u32, path: Path) -> Vec3A {
+        let Path {
+            depth,
+            straight,
+            weight,
+            budget,
+        } = path;
         let scene = self.scene;
         let ray = q.ray;
         self.signature = mix(self.signature, index ^ (hit.detail.part() << 24));
@@ -286,41 +299,65 @@ impl<'a> Integrator<'a> {
         // Reflection and refraction spend a bounce; a straight crossing does not.
         let bounces_left = depth < scene.max_depth;
         let reflectivity = material.reflectivity;
-        if bounces_left && reflectivity > 0.0 && weight * reflectivity >= self.min_weight {
+        let transparency = material.transparency;
+        let bends = matches!(material.eta, Some(eta) if eta != 1.0);
+        let reflects =
+            bounces_left && reflectivity > 0.0 && weight * reflectivity >= self.min_weight;
+        let transmits = transparency > 0.0
+            && weight * transparency >= self.min_weight
+            && if bends {
+                bounces_left
+            } else {
+                straight < MAX_STRAIGHT_CROSSINGS
+            };
+        // The rays this hit spawns share what is left of the sample's budget evenly; when
+        // it cannot pay for them all, none is traced, as if the depth limit were reached.
+        let children = reflects as u32 + transmits as u32;
+        if children == 0 || budget < children {
+            return color;
+        }
+        let share = (budget - children) / children;
+
+        if reflects {
             let dir = reflect(ray.dir, n);
             let origin = self.leave(&surface, n, dir);
             self.counts.secondary += 1;
             let reflected = RayQuery::new(Ray::new(origin, dir));
             let inside = inside(dir);
-            color += self.trace(&reflected, 0.0, inside, depth + 1, 0, weight * reflectivity)
-                * reflectivity;
-        }
-        let transparency = material.transparency;
-        if transparency > 0.0 && weight * transparency >= self.min_weight {
-            let bent = match material.eta {
-                Some(eta) if eta != 1.0 => {
-                    let ratio = if entering { 1.0 / eta } else { eta };
-                    // Past the critical angle the transmitted light is reflected inside.
-                    Some(refract(ray.dir, n, ratio).unwrap_or_else(|| reflect(ray.dir, n)))
-                }
-                _ => None,
+            let path = Path {
+                depth: depth + 1,
+                straight: 0,
+                weight: weight * reflectivity,
+                budget: share,
             };
-            let transmitted = match bent {
-                Some(_) if !bounces_left => return color,
-                Some(dir) => {
-                    let origin = self.leave(&surface, n, dir);
-                    self.counts.secondary += 1;
-                    let q = RayQuery::new(Ray::new(origin, dir));
-                    self.trace(&q, 0.0, inside(dir), depth + 1, 0, weight * transparency)
-                }
+            color += self.trace(&reflected, 0.0, inside, path) * reflectivity;
+        }
+        if transmits {
+            self.counts.secondary += 1;
+            let transmitted = if bends {
+                let eta = material.eta.unwrap_or(1.0);
+                let ratio = if entering { 1.0 / eta } else { eta };
+                // Past the critical angle the transmitted light is reflected inside.
+                let dir = refract(ray.dir, n, ratio).unwrap_or_else(|| reflect(ray.dir, n));
+                let origin = self.leave(&surface, n, dir);
+                let q = RayQuery::new(Ray::new(origin, dir));
+                let path = Path {
+                    depth: depth + 1,
+                    straight: 0,
+                    weight: weight * transparency,
+                    budget: share,
+                };
+                self.trace(&q, 0.0, inside(dir), path)
+            } else {
                 // Unbent light goes on along the very same ray, past this hit: exact, so an
                 // eta-1 clear object leaves the image untouched.
-                None if straight < MAX_STRAIGHT_CROSSINGS => {
-                    self.counts.secondary += 1;
-                    let inside = inside(ray.dir);
-                    self.trace(q, hit.t, inside, depth, straight + 1, weight * transparency)
-                }
-                None => return color,
+                let path = Path {
+                    depth,
+                    straight: straight + 1,
+                    weight: weight * transparency,
+                    budget: share,
+                };
+                self.trace(q, hit.t, inside(ray.dir), path)
             };
             color += transmitted * transparency;
         }

@@ -107,6 +107,10 @@ impl Window {
     }
 }
 
+/// How many cells each primitive may be listed in on average, beyond what the cells' own
+/// capacity (`MAX_OCCLUDERS` each) allows, before the buffer gives every cell to the BVH.
+const LISTINGS_PER_PRIMITIVE: u64 = 64;
+
 /// A range that slice `get` refuses (it starts after it ends).
 const CROWDED: (u32, u32) = (1, 0);
 
@@ -150,6 +154,32 @@ impl LightBuffer {
                 .collect();
             Window::around(&seen)
         });
+
+        // The lists' total length, before any is made: past the budget, crowds of
+        // overlapping boxes (thousands at one spot) would cost time and memory that grow
+        // with their square, and every cell would be left to the BVH anyway.
+        let listed: u64 = views
+            .iter()
+            .flat_map(|faces| faces.iter().enumerate())
+            .filter_map(|(face, view)| {
+                let view = view.as_ref()?;
+                let (u0, u1) = windows[face].cells(0, view.tangents[0]);
+                let (v0, v1) = windows[face].cells(1, view.tangents[1]);
+                Some(
+                    (u1 as u64 + 1).saturating_sub(u0 as u64)
+                        * (v1 as u64 + 1).saturating_sub(v0 as u64),
+                )
+            })
+            .sum();
+        let budget =
+            (MAX_OCCLUDERS * cell_count) as u64 + LISTINGS_PER_PRIMITIVE * boxes.len() as u64;
+        if listed > budget {
+            return Self {
+                cells: vec![CROWDED; cell_count],
+                occluders: Vec::new(),
+                windows,
+            };
+        }
 
         let mut per_cell: Vec<Vec<Occluder>> = vec![Vec::new(); cell_count];
         for (index, ((lo, hi), faces)) in boxes.iter().zip(&views).enumerate() {

@@ -10,31 +10,107 @@ use std::sync::Arc;
 pub struct ImageTexture {
     pub width: u32,
     pub height: u32,
-    texels: Vec<[u8; 3]>,
+    /// Three bytes per texel, rows top to bottom: the decoder's own buffer, kept as it is.
+    texels: Vec<u8>,
+}
+
+/// Why an image file cannot be a texture.
+#[derive(Debug, thiserror::Error)]
+pub enum TextureError {
+    #[error("{0}")]
+    Io(String),
+    #[error("it is not a regular file")]
+    NotAFile,
+    #[error(
+        "the file holds {bytes} bytes, more than the {} a texture may have",
+        crate::limits::MAX_TEXTURE_FILE_BYTES
+    )]
+    FileTooLarge { bytes: u64 },
+    #[error(
+        "it is {width}×{height} texels, more than the {} (8192×8192) a texture may have",
+        crate::limits::MAX_TEXTURE_TEXELS
+    )]
+    TooManyTexels { width: u32, height: u32 },
+    #[error("it is {width}×{height} texels; an image needs at least one")]
+    Empty { width: u32, height: u32 },
+    #[error("the JPEG data ends early (the file is truncated)")]
+    Truncated,
+    #[error("{0}")]
+    Decode(String),
 }
 
 impl ImageTexture {
-    pub fn load(path: &Path) -> Result<Self, image::ImageError> {
-        let img = image::ImageReader::open(path)?
-            .with_guessed_format()?
-            .decode()?
-            .into_rgb8();
-        Ok(Self::from_rgb8(img.width(), img.height(), img.into_raw()))
+    /// Reads an image file, refusing anything but a regular file within the limits: the
+    /// size is read from the header before any texel is decoded.
+    pub fn load(path: &Path) -> Result<Self, TextureError> {
+        use crate::limits::{MAX_TEXTURE_FILE_BYTES, MAX_TEXTURE_TEXELS};
+        let meta = std::fs::metadata(path)
+            .map_err(|e| TextureError::Io(crate::messages::io_message(&e)))?;
+        if !meta.is_file() {
+            return Err(TextureError::NotAFile);
+        }
+        if meta.len() > MAX_TEXTURE_FILE_BYTES {
+            return Err(TextureError::FileTooLarge { bytes: meta.len() });
+        }
+        let bytes =
+            std::fs::read(path).map_err(|e| TextureError::Io(crate::messages::io_message(&e)))?;
+        let reader = image::ImageReader::new(std::io::Cursor::new(&bytes[..]))
+            .with_guessed_format()
+            .map_err(|e| TextureError::Io(crate::messages::io_message(&e)))?;
+        let format = reader.format();
+        let (width, height) = reader
+            .into_dimensions()
+            .map_err(|e| TextureError::Decode(e.to_string()))?;
+        if width == 0 || height == 0 {
+            return Err(TextureError::Empty { width, height });
+        }
+        if width as u64 * height as u64 > MAX_TEXTURE_TEXELS {
+            return Err(TextureError::TooManyTexels { width, height });
+        }
+        // JPEG decoders fill a truncated stream with grey rather than fail; a complete
+        // stream ends with the end-of-image marker (trailing padding aside).
+        if format == Some(image::ImageFormat::Jpeg) && !ends_with_jpeg_eoi(&bytes) {
+            return Err(TextureError::Truncated);
+        }
+        let mut reader = image::ImageReader::new(std::io::Cursor::new(&bytes[..]))
+            .with_guessed_format()
+            .map_err(|e| TextureError::Io(crate::messages::io_message(&e)))?;
+        let mut limits = image::Limits::default();
+        limits.max_image_width = Some(width);
+        limits.max_image_height = Some(height);
+        // The decoded image in its widest form (16-bit RGBA), and the RGB copy made from it.
+        limits.max_alloc = Some(MAX_TEXTURE_TEXELS * 8 + MAX_TEXTURE_TEXELS * 3);
+        reader.limits(limits);
+        let img = reader
+            .decode()
+            .map_err(|e| TextureError::Decode(e.to_string()))?;
+        drop(bytes);
+        let rgb = img.into_rgb8();
+        Ok(Self::from_rgb8(rgb.width(), rgb.height(), rgb.into_raw()))
     }
 
     pub fn from_rgb8(width: u32, height: u32, raw: Vec<u8>) -> Self {
-        assert_eq!(raw.len(), (width * height * 3) as usize, "texel count");
-        let texels = raw.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+        assert_eq!(
+            raw.len() as u64,
+            width as u64 * height as u64 * 3,
+            "texel count"
+        );
         Self {
             width,
             height,
-            texels,
+            texels: raw,
         }
+    }
+
+    /// How many texels the image holds.
+    pub fn texel_count(&self) -> u64 {
+        self.width as u64 * self.height as u64
     }
 
     #[inline]
     fn texel(&self, x: u32, y: u32) -> Vec3A {
-        let [r, g, b] = self.texels[(y * self.width + x) as usize];
+        let i = (y as usize * self.width as usize + x as usize) * 3;
+        let [r, g, b] = [self.texels[i], self.texels[i + 1], self.texels[i + 2]];
         Vec3A::new(r as f32, g as f32, b as f32) * (1.0 / 255.0)
     }
 
@@ -60,11 +136,24 @@ impl ImageTexture {
 
     /// The average colour of the image (used to tint light passing through it).
     pub fn mean(&self) -> Vec3 {
-        let sum = self.texels.iter().fold(Vec3::ZERO, |acc, &[r, g, b]| {
-            acc + Vec3::new(r as f32, g as f32, b as f32)
-        });
-        sum / (255.0 * self.texels.len().max(1) as f32)
+        // Summed in f64: a long f32 sum would drift.
+        let mut sum = glam::DVec3::ZERO;
+        for t in self.texels.chunks_exact(3) {
+            sum += glam::DVec3::new(t[0] as f64, t[1] as f64, t[2] as f64);
+        }
+        (sum / (255.0 * self.texel_count().max(1) as f64)).as_vec3()
     }
+}
+
+/// Whether JPEG data ends with the end-of-image marker, allowing for zero or 0xFF padding
+/// after it.
+fn ends_with_jpeg_eoi(bytes: &[u8]) -> bool {
+    let end = bytes
+        .iter()
+        .rposition(|&b| b != 0 && b != 0xFF)
+        .map_or(0, |i| i + 1);
+    // The marker is 0xFF 0xD9: its 0xD9 is the last byte that is not padding.
+    end >= 2 && bytes[end - 1] == 0xD9 && bytes[end - 2] == 0xFF
 }
 
 /// ⌊x⌋ as an integer, without a call into libm (`f32::floor` is one on the x86-64

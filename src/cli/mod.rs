@@ -2,7 +2,7 @@
 
 mod render;
 
-use anyhow::Result;
+use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
 use prism::render::{OutputError, SettingsError};
 use prism::scene::SceneError;
@@ -45,11 +45,41 @@ pub struct ViewArgs {
 
 pub fn run(args: Args) -> Result<()> {
     match args.command {
-        Some(Command::Render(a)) => render::run(a),
+        Some(Command::Render(a)) => {
+            exit_on_signals()?;
+            render::run(a)
+        }
         Some(Command::View(a)) => view(a),
-        Some(Command::Bench(a)) => crate::bench::run(a),
+        Some(Command::Bench(a)) => {
+            exit_on_signals()?;
+            crate::bench::run(a)
+        }
         None => view(ViewArgs::default()),
     }
+}
+
+/// On SIGINT, SIGTERM or SIGHUP, a headless command removes its unfinished output files
+/// and exits with 128 + the signal's number (130, 143, 129), as shells expect.
+fn exit_on_signals() -> Result<()> {
+    use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
+    let mut signals = signal_hook::iterator::Signals::new([SIGINT, SIGTERM, SIGHUP])
+        .context("cannot install the signal handlers")?;
+    std::thread::Builder::new()
+        .name("prism-signals".into())
+        .spawn(move || {
+            if let Some(signal) = signals.forever().next() {
+                prism::render::output::remove_pending_files();
+                let name = match signal {
+                    SIGINT => "SIGINT",
+                    SIGTERM => "SIGTERM",
+                    _ => "SIGHUP",
+                };
+                eprintln!("\nprism: stopped by {name}; no output was written");
+                std::process::exit(128 + signal);
+            }
+        })
+        .context("cannot start the signal thread")?;
+    Ok(())
 }
 
 #[cfg(feature = "viewer")]

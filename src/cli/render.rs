@@ -2,6 +2,7 @@
 
 use anyhow::{Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
+use prism::render::output::ImageFormat;
 use prism::render::{AdaptiveSettings, PendingFile, RenderSettings};
 use prism::sampler::SampleLayout;
 use prism::scene::{PreparedScene, load_scene};
@@ -22,14 +23,15 @@ pub struct RenderArgs {
     /// Anti-aliasing level N: N×N subsamples per pixel, 1..8 (default: the scene's).
     #[arg(long)]
     pub aa: Option<u32>,
-    /// Output PNG file.
+    /// Output PNG file (a symbolic link's target is replaced; a device or FIFO is written
+    /// to directly).
     #[arg(long, short, default_value = "render.png")]
     pub out: PathBuf,
-    /// Worker threads (default: all cores).
-    #[arg(long)]
-    pub threads: Option<usize>,
-    /// Most reflection/refraction bounces (default: the scene's, else 5).
-    #[arg(long)]
+    /// Worker threads, 1..256 (default: all cores).
+    #[arg(long, value_parser = clap::value_parser!(u16).range(1..=prism::limits::MAX_THREADS as i64))]
+    pub threads: Option<u16>,
+    /// Most reflection/refraction bounces, 0..64 (default: the scene's, else 5).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(0..=prism::limits::MAX_DEPTH as i64))]
     pub max_depth: Option<u32>,
     /// Subsample positions: stratified (jittered in each cell) or grid (cell centres).
     #[arg(long, value_enum, default_value = "stratified")]
@@ -83,13 +85,11 @@ pub fn run(args: RenderArgs) -> Result<()> {
         });
     }
     settings.validate()?;
-    if args.threads == Some(0) {
-        anyhow::bail!("--threads 0: at least one thread is needed");
-    }
+    ImageFormat::from_path(&args.out)?;
     // Claim the output file first: an unwritable path fails now, not after the render.
     let pending = PendingFile::create(&args.out)?;
     let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(args.threads.unwrap_or(0))
+        .num_threads(args.threads.map_or(0, usize::from))
         .build()
         .context("cannot start the worker threads")?;
 

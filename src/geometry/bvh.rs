@@ -279,6 +279,11 @@ impl Bvh {
                 k += 1;
             }
             for &(t, lane) in &entered[..k] {
+                // Only a ray with a NaN in it enters an unused lane (every comparison with
+                // NaN keeps the interval open): it must not follow the lane's dummy index.
+                if n.child[lane] == NO_CHILD {
+                    continue;
+                }
                 stack.push(Pending {
                     t_enter: t,
                     child: n.child[lane],
@@ -322,6 +327,9 @@ impl Bvh {
             while mask != 0 {
                 let lane = mask.trailing_zeros() as usize;
                 mask &= mask - 1;
+                if n.child[lane] == NO_CHILD {
+                    continue; // see `closest`
+                }
                 if n.count[lane] == 0 {
                     stack.push(n.child[lane]);
                 } else {
@@ -341,8 +349,9 @@ impl Bvh {
     }
 
     /// Calls `visit` with every primitive in a leaf whose box overlaps `b` (touching
-    /// counts), in no particular order. For scene preparation, not for rays.
-    pub fn overlapping(&self, b: &Aabb, mut visit: impl FnMut(u32)) {
+    /// counts), in no particular order, until it returns false. For scene preparation,
+    /// not for rays.
+    pub fn overlapping(&self, b: &Aabb, mut visit: impl FnMut(u32) -> bool) {
         if self.nodes.is_empty() {
             return;
         }
@@ -356,7 +365,11 @@ impl Bvh {
                 match n.child(lane) {
                     Child::Empty => {}
                     Child::Node(c) => stack.push(c),
-                    Child::Leaf(range) => range.for_each(&mut visit),
+                    Child::Leaf(mut range) => {
+                        if !range.all(&mut visit) {
+                            return;
+                        }
+                    }
                 }
             }
         }
@@ -510,6 +523,7 @@ mod tests {
                 if bounds[original].overlaps(&query) {
                     found.push(original);
                 }
+                true
             });
             found.sort();
             let brute: Vec<usize> = (0..bounds.len())
@@ -518,8 +532,18 @@ mod tests {
             assert_eq!(found, brute, "{query:?}");
         }
         let mut touching = 0;
-        bvh.overlapping(&queries[2], |i| touching += (order[i as usize] == 1) as u32);
+        bvh.overlapping(&queries[2], |i| {
+            touching += (order[i as usize] == 1) as u32;
+            true
+        });
         assert_eq!(touching, 1);
+        // A visitor that says stop is called no more.
+        let mut calls = 0;
+        bvh.overlapping(&queries[0], |_| {
+            calls += 1;
+            false
+        });
+        assert_eq!(calls, 1);
     }
 
     /// The entry distance into lane 0's box and whether the ray enters it before `t_max`.

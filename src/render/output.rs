@@ -1,62 +1,184 @@
 //! Writing files (PNGs, the bench's CSV and caches) so that a failed or interrupted write
 //! never leaves a broken file: the data goes to a temporary file beside the target, which is
-//! renamed over it only when complete.
+//! renamed over it only when complete. A symbolic link is followed, and its target replaced;
+//! a device or FIFO (`/dev/null`, a pipe) is written directly, never replaced.
 
+use crate::messages::{io_message, shown};
+use std::fs::{File, OpenOptions};
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicU64, Ordering};
 use thiserror::Error;
 
 #[derive(Debug, Error)]
 pub enum OutputError {
-    #[error("{}: cannot write here: {source}", path.display())]
-    Create {
-        path: PathBuf,
-        source: std::io::Error,
-    },
+    #[error("{}: cannot write here: {reason}", path.display())]
+    Create { path: PathBuf, reason: String },
     #[error("{}: failed while writing: {reason}", path.display())]
     Write { path: PathBuf, reason: String },
+    #[error(
+        "{}: prism writes PNG images; name the file with a .png extension (got {})",
+        path.display(),
+        match extension { Some(e) => format!("\".{e}\""), None => "no extension".into() }
+    )]
+    Format {
+        path: PathBuf,
+        extension: Option<String>,
+    },
 }
 
-/// A file about to be written: created (and so checked for writability) before the render
+/// The image formats prism writes, chosen by a path's extension.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ImageFormat {
+    Png,
+}
+
+impl ImageFormat {
+    /// The format `path` names by its extension; an unknown or missing one is refused, so
+    /// `out.jpg` never receives PNG bytes. A device or FIFO (`/dev/stdout`, a pipe) has no
+    /// extension to read and receives PNG.
+    pub fn from_path(path: &Path) -> Result<Self, OutputError> {
+        if std::fs::metadata(path).is_ok_and(|m| !m.is_file() && !m.is_dir()) {
+            return Ok(ImageFormat::Png);
+        }
+        let extension = path.extension().map(|e| e.to_string_lossy().into_owned());
+        match extension.as_deref().map(str::to_ascii_lowercase).as_deref() {
+            Some("png") => Ok(ImageFormat::Png),
+            _ => Err(OutputError::Format {
+                path: path.to_path_buf(),
+                extension: extension.map(|e| shown(&e)),
+            }),
+        }
+    }
+}
+
+/// How a target is written.
+enum Target {
+    /// A regular file (or none yet): written to `temp`, then renamed onto `real`, the
+    /// path after following symbolic links.
+    Replace { real: PathBuf, temp: PathBuf },
+    /// A device (opened at once, so a refusal comes before the render) or a FIFO (opened
+    /// when the data is ready: opening one waits for a reader), written in place.
+    Direct(Option<File>),
+}
+
+/// A file about to be written: claimed (and so checked for writability) before the render
 /// starts, so a bad path fails at once rather than after the work is done.
 pub struct PendingFile {
     path: PathBuf,
-    temp: tempfile::NamedTempFile,
+    target: Target,
+}
+
+/// Temporary files not yet renamed into place, for `remove_pending_files`.
+static PENDING: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+/// Removes every temporary file a `PendingFile` holds: for a process about to exit on a
+/// signal, which runs no destructors.
+pub fn remove_pending_files() {
+    let pending = PENDING.lock().unwrap_or_else(|e| e.into_inner());
+    for temp in pending.iter() {
+        let _ = std::fs::remove_file(temp);
+    }
+}
+
+fn register(temp: &Path) {
+    PENDING
+        .lock()
+        .unwrap_or_else(|e| e.into_inner())
+        .push(temp.to_path_buf());
+}
+
+fn unregister(temp: &Path) {
+    PENDING
+        .lock()
+        .unwrap_or_else(|e| e.into_inner())
+        .retain(|p| p != temp);
+}
+
+/// The path a chain of symbolic links ends at (the path itself when it is none). A link
+/// that dangles names the file to create.
+fn resolve_links(path: &Path) -> Result<PathBuf, String> {
+    let mut current = path.to_path_buf();
+    // As many hops as Linux follows before it reports a loop.
+    for _ in 0..40 {
+        match std::fs::symlink_metadata(&current) {
+            Ok(meta) if meta.file_type().is_symlink() => {
+                let link = std::fs::read_link(&current).map_err(|e| io_message(&e))?;
+                current = match current.parent() {
+                    Some(dir) if link.is_relative() => dir.join(link),
+                    _ => link,
+                };
+            }
+            _ => return Ok(current),
+        }
+    }
+    Err("too many levels of symbolic links".into())
 }
 
 impl PendingFile {
     pub fn create(path: &Path) -> Result<Self, OutputError> {
-        let dir = match path.parent() {
-            Some(p) if !p.as_os_str().is_empty() => p,
-            _ => Path::new("."),
-        };
-        let name = path.file_name().map(|n| n.to_string_lossy().into_owned());
-        let err = |source| OutputError::Create {
+        let err = |reason: String| OutputError::Create {
             path: path.to_path_buf(),
-            source,
+            reason,
         };
-        let Some(name) = name else {
-            return Err(err(std::io::Error::new(
-                std::io::ErrorKind::InvalidInput,
-                "the path names no file",
-            )));
-        };
-        if path.is_dir() {
-            return Err(err(std::io::Error::new(
-                std::io::ErrorKind::IsADirectory,
-                "the path is a directory",
-            )));
+        // Followed through any links, as the kernel will when the file is opened.
+        match std::fs::metadata(path) {
+            Ok(meta) if meta.is_dir() => return Err(err("the path is a directory".into())),
+            Ok(meta) if !meta.is_file() => {
+                #[cfg(unix)]
+                let fifo = std::os::unix::fs::FileTypeExt::is_fifo(&meta.file_type());
+                #[cfg(not(unix))]
+                let fifo = false;
+                let file = if fifo {
+                    None
+                } else {
+                    let file = OpenOptions::new()
+                        .write(true)
+                        .open(path)
+                        .map_err(|e| err(io_message(&e)))?;
+                    Some(file)
+                };
+                return Ok(Self {
+                    path: path.to_path_buf(),
+                    target: Target::Direct(file),
+                });
+            }
+            _ => {}
         }
-        let prefix = format!(".{name}.");
-        let mut builder = tempfile::Builder::new();
-        builder.prefix(&prefix).suffix(".tmp");
-        // Temporary files are private by default; the finished image is an ordinary file.
-        #[cfg(unix)]
-        builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o644));
-        let temp = builder.tempfile_in(dir).map_err(err)?;
+        // A regular file, or none yet: the temporary file goes beside the link's target.
+        let real = resolve_links(path).map_err(err)?;
+        let Some(name) = real.file_name().map(|n| n.to_string_lossy().into_owned()) else {
+            return Err(err("the path names no file".into()));
+        };
+        let dir = match real.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+            _ => PathBuf::from("."),
+        };
+        match std::fs::metadata(&dir) {
+            Ok(meta) if meta.is_dir() => {}
+            Ok(_) => return Err(err(format!("{} is not a directory", dir.display()))),
+            Err(e) => return Err(err(format!("{}: {}", dir.display(), io_message(&e)))),
+        }
+        static SERIAL: AtomicU64 = AtomicU64::new(0);
+        let temp = loop {
+            let serial = SERIAL.fetch_add(1, Ordering::Relaxed);
+            let temp = dir.join(format!(".{name}.{}-{serial}.tmp", std::process::id()));
+            let mut options = OpenOptions::new();
+            options.write(true).create_new(true);
+            // The finished image is an ordinary file, readable like any other.
+            #[cfg(unix)]
+            std::os::unix::fs::OpenOptionsExt::mode(&mut options, 0o644);
+            match options.open(&temp) {
+                Ok(_) => break temp,
+                Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => continue,
+                Err(e) => return Err(err(io_message(&e))),
+            }
+        };
+        register(&temp);
         Ok(Self {
             path: path.to_path_buf(),
-            temp,
+            target: Target::Replace { real, temp },
         })
     }
 
@@ -64,46 +186,73 @@ impl PendingFile {
         &self.path
     }
 
-    /// Encodes `image` as PNG, then renames the finished file into place.
+    /// Encodes `image` as PNG, then puts the finished file in place.
     pub fn finish_png(self, image: &image::RgbImage) -> Result<PathBuf, OutputError> {
         self.commit(|file| {
             let mut writer = BufWriter::new(file);
             image
                 .write_to(&mut writer, image::ImageFormat::Png)
-                .map_err(|e| e.to_string())?;
-            writer.flush().map_err(|e| e.to_string())
+                .map_err(|e| match e {
+                    image::ImageError::IoError(e) => io_message(&e),
+                    other => other.to_string(),
+                })?;
+            writer.flush().map_err(|e| io_message(&e))
         })
     }
 
-    /// Writes `bytes`, then renames the finished file into place.
+    /// Writes `bytes`, then puts the finished file in place.
     pub fn finish_bytes(self, bytes: &[u8]) -> Result<PathBuf, OutputError> {
-        self.commit(|mut file| file.write_all(bytes).map_err(|e| e.to_string()))
+        self.commit(|mut file| file.write_all(bytes).map_err(|e| io_message(&e)))
     }
 
-    /// Fills the temporary file, makes it durable, and renames it over the target.
+    /// Fills the file; a temporary one is made durable and renamed over the target.
     fn commit(
         self,
-        fill: impl FnOnce(&std::fs::File) -> Result<(), String>,
+        fill: impl FnOnce(&File) -> Result<(), String>,
     ) -> Result<PathBuf, OutputError> {
-        let path = self.path;
+        let path = self.path.clone();
         let fail = |reason: String| OutputError::Write {
             path: path.clone(),
             reason,
         };
-        fill(self.temp.as_file()).map_err(fail)?;
-        self.temp
-            .as_file()
-            .sync_all()
-            .map_err(|e| fail(e.to_string()))?;
-        self.temp
-            .persist(&path)
-            .map_err(|e| fail(e.error.to_string()))?;
+        match &self.target {
+            Target::Direct(Some(file)) => fill(file).map_err(fail)?,
+            Target::Direct(None) => {
+                let file = OpenOptions::new()
+                    .write(true)
+                    .open(&path)
+                    .map_err(|e| fail(io_message(&e)))?;
+                fill(&file).map_err(fail)?;
+            }
+            Target::Replace { real, temp } => {
+                let file = OpenOptions::new()
+                    .write(true)
+                    .open(temp)
+                    .map_err(|e| fail(io_message(&e)))?;
+                fill(&file).map_err(fail)?;
+                file.sync_all().map_err(|e| fail(io_message(&e)))?;
+                std::fs::rename(temp, real).map_err(|e| fail(io_message(&e)))?;
+                unregister(temp);
+            }
+        }
         Ok(path)
+    }
+}
+
+impl Drop for PendingFile {
+    /// An abandoned write leaves nothing behind (after a rename there is nothing to remove).
+    fn drop(&mut self) {
+        if let Target::Replace { temp, .. } = &self.target
+            && std::fs::remove_file(temp).is_ok()
+        {
+            unregister(temp);
+        }
     }
 }
 
 /// Writes `image` to `path` as a PNG, atomically.
 pub fn write_png(path: &Path, image: &image::RgbImage) -> Result<PathBuf, OutputError> {
+    ImageFormat::from_path(path)?;
     PendingFile::create(path)?.finish_png(image)
 }
 
@@ -126,6 +275,13 @@ mod tests {
         assert_eq!(back, img);
         let files: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
         assert_eq!(files.len(), 1);
+        assert!(
+            PENDING
+                .lock()
+                .unwrap()
+                .iter()
+                .all(|p| !p.starts_with(dir.path()))
+        );
         #[cfg(unix)]
         {
             use std::os::unix::fs::PermissionsExt;

@@ -4,8 +4,7 @@ use crate::integrator::SelfIntersection;
 use crate::sampler::SampleLayout;
 use thiserror::Error;
 
-pub const MAX_AA: u32 = 8;
-pub const MAX_SIDE: u32 = 16384;
+use crate::limits::{MAX_AA, MAX_IMAGE_SIDE as MAX_SIDE};
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RenderSettings {
@@ -135,4 +134,12 @@ pub enum SettingsError {
     MinSamples,
     #[error("adaptive edge contrast {0}: must be a finite number ≥ 0")]
     EdgeContrast(f32),
+    /// The viewer's window (image beside the panel) is larger than it opens.
+    #[error(
+        "a {width}×{height} image beside the {panel}-pixel panel makes a window larger than \
+         the {} pixels a side the viewer opens; choose a smaller --width/--height, or use \
+         `prism render` for large images",
+        crate::limits::MAX_WINDOW_SIDE
+    )]
+    Window { width: u32, height: u32, panel: u32 },
 }

@@ -5,11 +5,9 @@ use thiserror::Error;
 
 #[derive(Debug, Error)]
 pub enum SceneError {
-    #[error("{}: cannot read the scene file: {source}", path.display())]
-    Read {
-        path: PathBuf,
-        source: std::io::Error,
-    },
+    /// The file cannot be read: missing, not a regular file, too large, not UTF-8 text.
+    #[error("{}: cannot read the scene file: {reason}", path.display())]
+    Read { path: PathBuf, reason: String },
     /// TOML syntax, an unknown or missing field, a value of the wrong type.
     #[error("{}:{line}:{column}: {message}", path.display())]
     Syntax {

@@ -5,7 +5,9 @@ use super::description::{RenderDefaults, Scene, SceneObject, ShapeDesc};
 use super::error::{SceneError, line_column};
 use crate::camera::{Camera, MAX_VFOV, MIN_VFOV};
 use crate::light::PointLight;
+use crate::limits;
 use crate::material::Material;
+use crate::messages::{number, quoted};
 use crate::texture::{ImageTexture, Texture};
 use glam::Vec3;
 use serde::Deserialize;
@@ -144,12 +146,57 @@ struct TetrahedronDef {
 
 /// Reads and validates the scene file at `path`; image textures are found relative to it.
 pub fn load_scene(path: &Path) -> Result<Scene, SceneError> {
-    let source = std::fs::read_to_string(path).map_err(|source| SceneError::Read {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let source = read_scene_text(path)?;
     let base = path.parent().unwrap_or(Path::new("."));
     parse_scene(&source, path, base)
+}
+
+/// The text of a scene file: a regular file of at most `MAX_SCENE_FILE_BYTES`, in UTF-8.
+fn read_scene_text(path: &Path) -> Result<String, SceneError> {
+    use crate::limits::MAX_SCENE_FILE_BYTES;
+    use crate::messages::io_message;
+    use std::io::Read;
+    let fail = |reason: String| SceneError::Read {
+        path: path.to_path_buf(),
+        reason,
+    };
+    let meta = std::fs::metadata(path).map_err(|e| fail(io_message(&e)))?;
+    if meta.is_dir() {
+        return Err(fail("it is a directory".into()));
+    }
+    if !meta.is_file() {
+        // A FIFO would block until written to, a device might never end.
+        return Err(fail("it is not a regular file".into()));
+    }
+    let too_large = || {
+        fail(format!(
+            "it is larger than the {} MiB a scene file may be",
+            MAX_SCENE_FILE_BYTES >> 20
+        ))
+    };
+    if meta.len() > MAX_SCENE_FILE_BYTES {
+        return Err(too_large());
+    }
+    let file = std::fs::File::open(path).map_err(|e| fail(io_message(&e)))?;
+    // The file may grow between the check and the read: read no more than the limit.
+    let mut bytes = Vec::new();
+    file.take(MAX_SCENE_FILE_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| fail(io_message(&e)))?;
+    if bytes.len() as u64 > MAX_SCENE_FILE_BYTES {
+        return Err(too_large());
+    }
+    String::from_utf8(bytes).map_err(|e| {
+        let valid = &e.as_bytes()[..e.utf8_error().valid_up_to()];
+        let text = std::str::from_utf8(valid).unwrap_or_default();
+        let (line, column) = line_column(text, text.len());
+        SceneError::Syntax {
+            path: path.to_path_buf(),
+            line,
+            column,
+            message: "the text is not valid UTF-8 here".into(),
+        }
+    })
 }
 
 /// Validates scene text; `path` names it in messages, `base_dir` resolves texture paths.
@@ -235,22 +282,29 @@ impl Validator<'_> {
             Err(self.field_error(
                 at,
                 field,
-                format!("`{field}` must be a finite number, got {v}"),
+                format!("`{field}` must be a finite number, got {}", number(v)),
             ))
         }
     }
 
-    fn positive(&self, at: &Item, field: &str, v: f32) -> Result<f32, SceneError> {
+    /// A radius, height or pattern size: positive, and within the lengths the tracer's
+    /// squares and products keep finite (limits.rs).
+    fn length(&self, at: &Item, field: &str, v: f32) -> Result<f32, SceneError> {
         let v = self.number(at, field, v)?;
-        if v > 0.0 {
-            Ok(v)
+        let problem = if v <= 0.0 {
+            "be greater than zero"
+        } else if (v as f64) < limits::MIN_LENGTH {
+            &format!("be at least {:e}", limits::MIN_LENGTH)
+        } else if v as f64 > limits::MAX_COORDINATE {
+            &format!("be at most {:e}", limits::MAX_COORDINATE)
         } else {
-            Err(self.field_error(
-                at,
-                field,
-                format!("`{field}` must be greater than zero, got {v}"),
-            ))
-        }
+            return Ok(v);
+        };
+        Err(self.field_error(
+            at,
+            field,
+            format!("`{field}` must {problem}, got {}", number(v)),
+        ))
     }
 
     fn in_range(
@@ -268,7 +322,12 @@ impl Validator<'_> {
             Err(self.field_error(
                 at,
                 field,
-                format!("`{field}` must lie in [{lo}, {hi}], got {v}"),
+                format!(
+                    "`{field}` must lie in [{}, {}], got {}",
+                    number(lo),
+                    number(hi),
+                    number(v)
+                ),
             ))
         }
     }
@@ -285,31 +344,67 @@ impl Validator<'_> {
         }
     }
 
-    /// A position, relative to the scene origin.
+    /// A position, relative to the scene origin (the camera), within `MAX_COORDINATE` of it.
     fn position(&self, at: &Item, field: &str, v: P3) -> Result<Vec3, SceneError> {
-        let relative = (glam::DVec3::from(v) - self.origin).as_vec3();
-        if v.iter().all(|c| c.is_finite()) && relative.is_finite() {
-            Ok(relative)
+        let relative = glam::DVec3::from(v) - self.origin;
+        if relative.is_finite() && relative.abs().max_element() <= limits::MAX_COORDINATE {
+            Ok(relative.as_vec3())
         } else {
             Err(self.field_error(
                 at,
                 field,
-                format!("`{field}` must hold finite numbers within ±3e38 of the camera, got {v:?}"),
+                format!(
+                    "`{field}` must hold finite numbers within {:e} of the camera on every \
+                     axis, got {v:?}",
+                    limits::MAX_COORDINATE
+                ),
             ))
         }
     }
 
-    fn color(&self, at: &Item, field: &str, v: V3) -> Result<Vec3, SceneError> {
+    /// A colour whose channels lie in [0, hi]; `what` says why hi is the bound.
+    fn color_up_to(
+        &self,
+        at: &Item,
+        field: &str,
+        v: V3,
+        hi: f32,
+        what: &str,
+    ) -> Result<Vec3, SceneError> {
         let c = self.point(at, field, v)?;
-        if c.min_element() >= 0.0 {
-            Ok(c)
-        } else {
-            Err(self.field_error(
+        if c.min_element() < 0.0 {
+            return Err(self.field_error(
                 at,
                 field,
                 format!("`{field}` must not be negative, got {v:?}"),
-            ))
+            ));
         }
+        if c.max_element() > hi {
+            return Err(self.field_error(
+                at,
+                field,
+                format!("`{field}` must lie in [0, {hi}] per channel ({what}), got {v:?}"),
+            ));
+        }
+        Ok(c)
+    }
+
+    /// A surface's colour: the fraction of light it reflects, per channel.
+    fn reflectance(&self, at: &Item, field: &str, v: V3) -> Result<Vec3, SceneError> {
+        let hi = *limits::REFLECTANCE.end();
+        self.color_up_to(at, field, v, hi, "a surface reflects at most all the light")
+    }
+
+    /// A light's colour, the background, the ambient light: brighter than white is allowed.
+    fn radiance(&self, at: &Item, field: &str, v: V3) -> Result<Vec3, SceneError> {
+        let hi = limits::MAX_RADIANCE;
+        self.color_up_to(
+            at,
+            field,
+            v,
+            hi,
+            "light may be brighter than white, up to this",
+        )
     }
 
     fn count(&self, at: &Item, field: &str, v: i64, lo: i64, hi: i64) -> Result<u32, SceneError> {
@@ -340,11 +435,11 @@ impl Validator<'_> {
                 let l = l.get_ref();
                 Ok(PointLight {
                     position: self.position(&at, "position", l.position)?,
-                    color: self.color(&at, "color", l.color.unwrap_or([1.0; 3]))?,
+                    color: self.radiance(&at, "color", l.color.unwrap_or([1.0; 3]))?,
                 })
             })
             .collect::<Result<Vec<_>, SceneError>>()?;
-        let mut images = HashMap::new();
+        let mut images = Images::default();
         let textures = file
             .textures
             .iter()
@@ -365,14 +460,17 @@ impl Validator<'_> {
                        shape: &dyn Fn(&Item) -> Result<ShapeDesc, SceneError>|
          -> Result<(), SceneError> {
             let label = match name {
-                Some(n) => format!("{kind}[{i}] \"{n}\""),
+                Some(n) => format!("{kind}[{i}] {}", quoted(n)),
                 None => format!("{kind}[{i}]"),
             };
             let at = Item { span, name: &label };
             let material = match material {
                 None => Material::default(),
                 Some(m) => materials.get(m).cloned().ok_or_else(|| {
-                    self.error(&at, format!("no material named \"{m}\" (see [materials])"))
+                    self.error(
+                        &at,
+                        format!("no material named {} (see [materials])", quoted(m)),
+                    )
                 })?,
             };
             objects.push(SceneObject {
@@ -387,17 +485,23 @@ impl Validator<'_> {
             add("spheres", i, s.span(), &d.name, &d.material, &|at| {
                 Ok(ShapeDesc::Sphere {
                     center: self.position(at, "center", d.center)?,
-                    radius: self.positive(at, "radius", d.radius)?,
+                    radius: self.length(at, "radius", d.radius)?,
                 })
             })?;
         }
         for (i, c) in file.cylinders.iter().enumerate() {
             let d = c.get_ref();
             add("cylinders", i, c.span(), &d.name, &d.material, &|at| {
+                let base = self.position(at, "base", d.base)?;
+                let height = self.length(at, "height", d.height)?;
+                // The top cap is a position too.
+                let mut top = d.base;
+                top[1] += height as f64;
+                self.position(at, "height", top)?;
                 Ok(ShapeDesc::Cylinder {
-                    base: self.position(at, "base", d.base)?,
-                    radius: self.positive(at, "radius", d.radius)?,
-                    height: self.positive(at, "height", d.height)?,
+                    base,
+                    radius: self.length(at, "radius", d.radius)?,
+                    height,
                 })
             })?;
         }
@@ -423,9 +527,7 @@ impl Validator<'_> {
             let d = t.get_ref();
             add("tetrahedra", i, t.span(), &d.name, &d.material, &|at| {
                 let v = self.vertices(at, &d.vertices)?;
-                let extent = extent(&v);
-                let volume6 = (v[1] - v[0]).cross(v[2] - v[0]).dot(v[3] - v[0]).abs();
-                if volume6.is_nan() || volume6 <= 1e-5 * extent.powi(3) {
+                if !has_volume(&v) {
                     return Err(self.error(at, "the four vertices lie in one plane (no volume)"));
                 }
                 Ok(ShapeDesc::Tetrahedron {
@@ -528,26 +630,26 @@ impl Validator<'_> {
                 "width",
                 opt(r.width, defaults.width),
                 1,
-                MAX_IMAGE_SIDE,
+                limits::MAX_IMAGE_SIDE as i64,
             )?,
             height: self.count(
                 &at,
                 "height",
                 opt(r.height, defaults.height),
                 1,
-                MAX_IMAGE_SIDE,
+                limits::MAX_IMAGE_SIDE as i64,
             )?,
-            aa: self.count(&at, "aa", opt(r.aa, defaults.aa), 1, 8)?,
+            aa: self.count(&at, "aa", opt(r.aa, defaults.aa), 1, limits::MAX_AA as i64)?,
             max_depth: self.count(
                 &at,
                 "max_depth",
                 opt(r.max_depth, defaults.max_depth),
                 0,
-                64,
+                limits::MAX_DEPTH as i64,
             )?,
         };
-        let background = self.color(&at, "background", r.background.unwrap_or([0.0; 3]))?;
-        let ambient = self.color(&at, "ambient", r.ambient.unwrap_or([0.2; 3]))?;
+        let background = self.radiance(&at, "background", r.background.unwrap_or([0.0; 3]))?;
+        let ambient = self.radiance(&at, "ambient", r.ambient.unwrap_or([0.2; 3]))?;
         Ok((render, background, ambient))
     }
 
@@ -555,42 +657,71 @@ impl Validator<'_> {
         &self,
         name: &str,
         t: &Spanned<TextureDef>,
-        images: &mut HashMap<PathBuf, Arc<ImageTexture>>,
+        images: &mut Images,
     ) -> Result<Texture, SceneError> {
-        let label = format!("textures.{name}");
+        let label = format!("textures.{}", crate::messages::shown(name));
         let at = Item {
             span: t.span(),
             name: &label,
         };
         let t = t.get_ref();
+        // Which fields each type reads; any other given is a mistake worth saying.
+        let (kind, takes): (&str, &[&str]) = match t.kind.as_str() {
+            "image" => ("image", &["path"]),
+            "checker" => ("checker", &["colors", "size", "axes"]),
+            "stripes" => ("stripes", &["colors", "width", "direction"]),
+            other => {
+                return Err(self.field_error(
+                    &at,
+                    "type",
+                    format!(
+                        "unknown texture type {} (expected image, checker or stripes)",
+                        quoted(other)
+                    ),
+                ));
+            }
+        };
+        let given = [
+            ("path", t.path.is_some()),
+            ("colors", t.colors.is_some()),
+            ("size", t.size.is_some()),
+            ("axes", t.axes.is_some()),
+            ("width", t.width.is_some()),
+            ("direction", t.direction.is_some()),
+        ];
+        if let Some((field, _)) = given.iter().find(|(f, g)| *g && !takes.contains(f)) {
+            return Err(self.field_error(
+                &at,
+                field,
+                format!(
+                    "`{field}` does not apply to a {kind} texture (it takes {})",
+                    takes.join(", ")
+                ),
+            ));
+        }
         let colors = |default: [V3; 2]| -> Result<[Vec3; 2], SceneError> {
             let [a, b] = t.colors.unwrap_or(default);
-            Ok([self.color(&at, "colors", a)?, self.color(&at, "colors", b)?])
+            Ok([
+                self.reflectance(&at, "colors", a)?,
+                self.reflectance(&at, "colors", b)?,
+            ])
         };
         let require = |field: &str, v: Option<f32>| {
-            v.ok_or_else(|| self.error(&at, format!("a {} texture needs `{field}`", t.kind)))
+            v.ok_or_else(|| self.error(&at, format!("a {kind} texture needs `{field}`")))
         };
-        match t.kind.as_str() {
+        match kind {
             "image" => {
                 let Some(rel) = &t.path else {
                     return Err(self.error(&at, "an image texture needs `path`"));
                 };
                 let full = self.base_dir.join(rel);
-                if let Some(img) = images.get(&full) {
-                    return Ok(Texture::Image(img.clone()));
-                }
-                let img = ImageTexture::load(&full).map_err(|e| {
-                    self.error(
-                        &at,
-                        format!("cannot load image \"{}\": {e}", full.display()),
-                    )
-                })?;
-                let img = Arc::new(img);
-                images.insert(full, img.clone());
-                Ok(Texture::Image(img))
+                images
+                    .load(&full)
+                    .map(Texture::Image)
+                    .map_err(|e| self.field_error(&at, "path", e))
             }
             "checker" => {
-                let size = self.positive(&at, "size", require("size", t.size)?)?;
+                let size = self.length(&at, "size", require("size", t.size)?)?;
                 let axes_text = t.axes.as_deref().unwrap_or("xyz");
                 let mut axes = Vec3::ZERO;
                 for ch in axes_text.chars() {
@@ -599,15 +730,19 @@ impl Validator<'_> {
                         'y' => axes.y = 1.0,
                         'z' => axes.z = 1.0,
                         _ => {
-                            return Err(self.error(
+                            return Err(self.field_error(
                                 &at,
-                                format!("`axes` takes letters from \"xyz\", got \"{axes_text}\""),
+                                "axes",
+                                format!(
+                                    "`axes` takes letters from \"xyz\", got {}",
+                                    quoted(axes_text)
+                                ),
                             ));
                         }
                     }
                 }
                 if axes == Vec3::ZERO {
-                    return Err(self.error(&at, "`axes` names no axis"));
+                    return Err(self.field_error(&at, "axes", "`axes` names no axis"));
                 }
                 Ok(Texture::Checker {
                     colors: colors([[1.0; 3], [0.0; 3]])?,
@@ -615,21 +750,18 @@ impl Validator<'_> {
                     axes,
                 })
             }
-            "stripes" => {
-                let width = self.positive(&at, "width", require("width", t.width)?)?;
+            _ => {
+                let width = self.length(&at, "width", require("width", t.width)?)?;
                 let d = self.point(&at, "direction", t.direction.unwrap_or([1.0, 0.0, 0.0]))?;
-                let direction = crate::numerics::try_normalize(d)
-                    .ok_or_else(|| self.error(&at, "`direction` has zero length"))?;
+                let direction = crate::numerics::try_normalize(d).ok_or_else(|| {
+                    self.field_error(&at, "direction", "`direction` has zero length")
+                })?;
                 Ok(Texture::Stripes {
                     colors: colors([[1.0; 3], [0.0; 3]])?,
                     width,
                     direction,
                 })
             }
-            other => Err(self.error(
-                &at,
-                format!("unknown texture type \"{other}\" (expected image, checker or stripes)"),
-            )),
         }
     }
 
@@ -653,59 +785,101 @@ impl Validator<'_> {
             (Some(t), None) => textures
                 .get(t)
                 .cloned()
-                .ok_or_else(|| self.error(&at, format!("no texture named \"{t}\"")))?,
-            (None, Some(c)) => Texture::Solid(self.color(&at, "color", c)?),
+                .ok_or_else(|| self.error(&at, format!("no texture named {}", quoted(t))))?,
+            (None, Some(c)) => Texture::Solid(self.reflectance(&at, "color", c)?),
             (None, None) => d.texture.clone(),
         };
-        let non_negative = |field: &str, v: Option<f32>, default: f32| {
-            self.in_range(&at, field, v.unwrap_or(default), 0.0, f32::MAX)
+        let factor = |field: &str, v: Option<f32>, default: f32| {
+            self.in_range(
+                &at,
+                field,
+                v.unwrap_or(default),
+                0.0,
+                limits::MAX_PHONG_FACTOR,
+            )
         };
+        let fraction =
+            |field: &str, v: Option<f32>| self.in_range(&at, field, v.unwrap_or(0.0), 0.0, 1.0);
         let eta = match m.eta {
             None => None,
-            Some(e) if e.is_finite() && e > 0.0 => Some(e),
             Some(e) => {
-                return Err(self.field_error(
-                    &at,
-                    "eta",
-                    format!("`eta` must be a finite number greater than zero, got {e}"),
-                ));
+                Some(self.in_range(&at, "eta", e, *limits::ETA.start(), *limits::ETA.end())?)
             }
         };
         Ok(Material {
             texture,
-            ambient: non_negative("ambient", m.ambient, d.ambient)?,
-            diffuse: non_negative("diffuse", m.diffuse, d.diffuse)?,
-            specular: non_negative("specular", m.specular, d.specular)?,
-            shininess: non_negative("shininess", m.shininess, d.shininess)?,
-            reflectivity: self.in_range(
+            ambient: factor("ambient", m.ambient, d.ambient)?,
+            diffuse: factor("diffuse", m.diffuse, d.diffuse)?,
+            specular: factor("specular", m.specular, d.specular)?,
+            shininess: self.in_range(
                 &at,
-                "reflectivity",
-                m.reflectivity.unwrap_or(0.0),
+                "shininess",
+                m.shininess.unwrap_or(d.shininess),
                 0.0,
-                1.0,
+                limits::MAX_SHININESS,
             )?,
-            transparency: self.in_range(
-                &at,
-                "transparency",
-                m.transparency.unwrap_or(0.0),
-                0.0,
-                1.0,
-            )?,
+            reflectivity: fraction("reflectivity", m.reflectivity)?,
+            transparency: fraction("transparency", m.transparency)?,
             eta,
         })
     }
 }
 
-/// The largest image side the renderer accepts.
-pub const MAX_IMAGE_SIDE: i64 = 16384;
-
-/// The largest extent of a point set along any axis.
-fn extent(v: &[Vec3]) -> f32 {
-    let b = crate::geometry::Aabb::from_points(v);
-    (b.max - b.min).max_element()
+/// The image textures of one scene: each file decoded once, and all of them together
+/// within `MAX_SCENE_TEXELS`.
+#[derive(Default)]
+struct Images {
+    loaded: HashMap<PathBuf, Arc<ImageTexture>>,
+    texels: u64,
 }
 
-/// Why these corners do not make a planar convex polygon, if they do not.
+impl Images {
+    fn load(&mut self, path: &Path) -> Result<Arc<ImageTexture>, String> {
+        if let Some(img) = self.loaded.get(path) {
+            return Ok(img.clone());
+        }
+        let shown = quoted(&path.display().to_string());
+        let img =
+            ImageTexture::load(path).map_err(|e| format!("cannot load image {shown}: {e}"))?;
+        self.texels += img.texel_count();
+        if self.texels > limits::MAX_SCENE_TEXELS {
+            return Err(format!(
+                "image {shown} brings the scene's textures to {} texels, more than the {} \
+                 all of them may have together",
+                self.texels,
+                limits::MAX_SCENE_TEXELS
+            ));
+        }
+        let img = Arc::new(img);
+        self.loaded.insert(path.to_path_buf(), img.clone());
+        Ok(img)
+    }
+}
+
+/// The points moved to their first and scaled by their largest extent along any axis, in
+/// f64: the checks below then use tolerances relative to the shape's own size, whatever its
+/// scale or distance.
+fn normalized(v: &[Vec3]) -> Vec<glam::DVec3> {
+    let b = crate::geometry::Aabb::from_points(v);
+    let extent = (b.max.as_dvec3() - b.min.as_dvec3()).max_element();
+    let scale = if extent > 0.0 { 1.0 / extent } else { 0.0 };
+    v.iter()
+        .map(|p| (p.as_dvec3() - v[0].as_dvec3()) * scale)
+        .collect()
+}
+
+/// Whether four corners enclose a volume: beyond the rounding of f32 vertices (relative to
+/// the tetrahedron's extent, so at any scale).
+fn has_volume(v: &[Vec3]) -> bool {
+    let p = normalized(v);
+    let volume6 = (p[1] - p[0]).cross(p[2] - p[0]).dot(p[3] - p[0]).abs();
+    volume6 > 1e-5
+}
+
+/// Why these corners do not make a planar convex polygon, if they do not. Tolerances are
+/// relative to the polygon's extent, and a corner counts as straight when its vertex lies
+/// within that tolerance of its neighbours' line, so a regular polygon of many sides passes
+/// at any scale.
 pub fn check_polygon(v: &[Vec3]) -> Result<(), String> {
     if v.len() < 3 {
         return Err(format!(
@@ -713,38 +887,42 @@ pub fn check_polygon(v: &[Vec3]) -> Result<(), String> {
             v.len()
         ));
     }
-    let extent = extent(v);
+    let v = normalized(v);
     let n = v.len();
+    // f32 vertices are rounded to about 6e-8 of their extent; these are well beyond that.
+    const COINCIDENT: f64 = 1e-6;
     for i in 0..n {
         let j = (i + 1) % n;
-        if (v[j] - v[i]).length() <= 1e-6 * extent {
+        if (v[j] - v[i]).length() <= COINCIDENT {
             return Err(format!("vertices {i} and {j} coincide"));
         }
     }
     // Newell's normal: robust for any planar polygon, and its length is twice the area.
-    let mut normal = Vec3::ZERO;
+    let mut normal = glam::DVec3::ZERO;
     for i in 0..n {
         let (a, b) = (v[i], v[(i + 1) % n]);
-        normal += Vec3::new(
+        normal += glam::DVec3::new(
             (a.y - b.y) * (a.z + b.z),
             (a.z - b.z) * (a.x + b.x),
             (a.x - b.x) * (a.y + b.y),
         );
     }
     let area2 = normal.length();
-    if area2.is_nan() || area2 <= 1e-6 * extent * extent {
+    if area2.is_nan() || area2 <= 1e-6 {
         return Err("the vertices are collinear (the polygon has no area)".into());
     }
-    let normal = normal.normalize();
+    let normal = normal / area2;
     for (i, p) in v.iter().enumerate() {
-        if (*p - v[0]).dot(normal).abs() > 1e-4 * extent {
+        if (*p - v[0]).dot(normal).abs() > 1e-4 {
             return Err(format!("vertex {i} is not in the plane of the others"));
         }
     }
     for i in 0..n {
         let (a, b, c) = (v[i], v[(i + 1) % n], v[(i + 2) % n]);
-        let turn = (b - a).cross(c - b);
-        if turn.length() <= 1e-6 * extent * extent {
+        let (e1, e2) = (b - a, c - b);
+        let turn = e1.cross(e2);
+        // About the distance of the middle vertex from the line through the other two.
+        if turn.length() <= COINCIDENT * e1.length().max(e2.length()) {
             return Err(format!(
                 "vertices {i}, {}, {} are collinear",
                 (i + 1) % n,

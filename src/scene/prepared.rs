@@ -344,8 +344,10 @@ fn mark_isolated_solids(primitives: &[Primitive], bvh: &Bvh, objects: &mut [Obje
             max: bounds.max + margin,
         };
         let mut alone = true;
+        // Stops at the first neighbour: among many coincident solids the search is short.
         bvh.overlapping(&near, |other| {
             alone &= other == index || !primitives[other as usize].shape.bounds().overlaps(&near);
+            alone
         });
         if alone {
             data.isolated_solid = Some(index);

@@ -44,11 +44,26 @@ pub fn run(args: ViewArgs) -> Result<()> {
         aa,
     );
     probe.validate()?;
+    let window_width = probe.width as u64 + PANEL_WIDTH.ceil() as u64;
+    let largest = prism::limits::MAX_WINDOW_SIDE;
+    if window_width > largest as u64 || probe.height > largest {
+        return Err(prism::render::SettingsError::Window {
+            width: probe.width,
+            height: probe.height,
+            panel: PANEL_WIDTH.ceil() as u32,
+        }
+        .into());
+    }
     let screenshot_dir = args.screenshot_dir.unwrap_or_else(|| PathBuf::from("."));
-    if !screenshot_dir.is_dir() {
+    let dir_problem = match std::fs::metadata(&screenshot_dir) {
+        Ok(meta) if meta.is_dir() => None,
+        Ok(_) => Some("it is not a directory".to_string()),
+        Err(e) => Some(prism::messages::io_message(&e)),
+    };
+    if let Some(reason) = dir_problem {
         return Err(prism::render::OutputError::Create {
             path: screenshot_dir,
-            source: std::io::Error::new(std::io::ErrorKind::NotFound, "not a directory"),
+            reason: format!("screenshots cannot be saved here: {reason}"),
         }
         .into());
     }
@@ -81,13 +96,15 @@ pub fn run(args: ViewArgs) -> Result<()> {
         refresh_pending: false,
         modifiers: Default::default(),
         status: Status::default(),
+        render_error: None,
     };
     event_loop
         .run_app(&mut app)
         .context("the window's event loop failed")?;
-    match app.error {
-        Some(e) => Err(e),
-        None => Ok(()),
+    match (app.error, app.render_error) {
+        (Some(e), _) => Err(e),
+        (None, Some(e)) => Err(anyhow!("the render failed while the viewer ran: {e}")),
+        (None, None) => Ok(()),
     }
 }
 
@@ -109,6 +126,8 @@ struct App {
     refresh_pending: bool,
     modifiers: winit::keyboard::ModifiersState,
     status: Status,
+    /// The last failure of the render thread, reported again when the window closes.
+    render_error: Option<String>,
 }
 
 /// Everything that exists only while the window does.
@@ -266,6 +285,13 @@ impl App {
                     p.status.passes_done, p.status.samples_per_pixel, p.status.seconds
                 );
             }
+            if let Some(e) = &p.status.error
+                && self.status.error.as_ref() != Some(e)
+            {
+                eprintln!("prism: error: the render failed: {e}");
+                self.panel.message = Some((format!("The render failed: {e}"), true));
+                self.render_error = Some(e.clone());
+            }
             self.status = p.status.clone();
             if p.serial != self.shown_serial {
                 self.shown_serial = p.serial;
@@ -404,6 +430,10 @@ impl App {
 fn copy_image(frame: &mut [u8], fw: u32, fh: u32, x0: u32, p: &render_thread::Published) {
     let cols = p.width.min(fw.saturating_sub(x0)) as usize;
     let rows = p.height.min(fh) as usize;
+    // A window narrower than the panel shows no image at all.
+    if cols == 0 {
+        return;
+    }
     for y in 0..rows {
         let src = y * p.width as usize * 4;
         let dst = (y * fw as usize + x0 as usize) * 4;
@@ -492,12 +522,13 @@ impl ApplicationHandler<Wake> for App {
                 };
                 let pressed = event.state == ElementState::Pressed;
                 // Releases always count, so a key never sticks.
-                if pressed && (egui_keys || response.consumed) {
-                    return;
-                }
+                // Ctrl+Q quits wherever the keyboard focus is (the panel's too).
                 if pressed && code == KeyCode::KeyQ && self.modifiers.control_key() {
                     self.gfx = None;
                     event_loop.exit();
+                    return;
+                }
+                if pressed && (egui_keys || response.consumed) {
                     return;
                 }
                 let was_flying = self.input.flying();

@@ -39,6 +39,9 @@ pub struct Status {
     pub active_pixels: usize,
     pub total_pixels: usize,
     pub preview: bool,
+    /// Why the last pass failed (a panic in the tracer): shown in the panel, and the
+    /// viewer's exit code reports it.
+    pub error: Option<String>,
 }
 
 /// The latest published image, as RGBA8 rows.
@@ -152,20 +155,30 @@ impl Worker {
             let generation = self.generation.load(Ordering::SeqCst);
             let counter = self.generation.clone();
             let cancelled = move || counter.load(Ordering::SeqCst) != generation;
-            if self.moving {
-                self.preview(&cancelled);
-                waiting = true;
-                continue;
-            }
-            match self.job.step(&cancelled) {
-                PassOutcome::Finished(stats) => {
-                    self.publish(stats.seconds);
-                    waiting = false;
+            // A panic in the tracer is a bug: report it and wait for a change, rather
+            // than die silently or fail again and again on the same pass.
+            let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                if self.moving {
+                    self.preview(&cancelled);
+                    return true;
                 }
-                PassOutcome::Cancelled => waiting = false,
-                // The last finished pass already published the converged image.
-                PassOutcome::Converged => waiting = true,
-            }
+                match self.job.step(&cancelled) {
+                    PassOutcome::Finished(stats) => {
+                        self.publish(stats.seconds);
+                        false
+                    }
+                    PassOutcome::Cancelled => false,
+                    // The last finished pass already published the converged image.
+                    PassOutcome::Converged => true,
+                }
+            }));
+            waiting = match outcome {
+                Ok(waiting) => waiting,
+                Err(payload) => {
+                    self.fail(panic_message(payload.as_ref()));
+                    true
+                }
+            };
         }
     }
 
@@ -239,8 +252,20 @@ impl Worker {
             },
             total_pixels: (width * height) as usize,
             preview: false,
+            error: None,
         };
         self.store(rgba, width, height, status);
+    }
+
+    /// Publishes the failure with the last image.
+    fn fail(&self, message: String) {
+        {
+            let mut p = self.published.lock().unwrap_or_else(|e| e.into_inner());
+            p.serial += 1;
+            p.status.error = Some(message);
+            p.status.converged = true;
+        }
+        (self.wake)();
     }
 
     fn store(&self, rgba: Vec<u8>, width: u32, height: u32, status: Status) {
@@ -253,5 +278,16 @@ impl Worker {
             p.status = status;
         }
         (self.wake)();
+    }
+}
+
+/// The text a panic was raised with.
+fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
+    if let Some(s) = payload.downcast_ref::<&str>() {
+        s.to_string()
+    } else if let Some(s) = payload.downcast_ref::<String>() {
+        s.clone()
+    } else {
+        "a panic with no message".into()
     }
 }

@@ -1,0 +1,78 @@
+//! Every bound an input may take, in one place: the scene file's validator, the command
+//! line, the viewer and the renderer all read these, so a value one of them accepts is one
+//! the others accept too. docs/testing.md lists them with what a user sees at each.
+//!
+//! The numeric bounds exist so that every quantity the tracer derives from valid input
+//! stays finite in f32: a product of two coordinates (a cross product, a squared distance)
+//! of at most `MAX_COORDINATE` each is far below f32's largest value, and so is a colour
+//! after any number of bounces.
+
+use std::ops::RangeInclusive;
+
+/// The largest scene file read, in bytes: far beyond any hand-written scene, small enough
+/// that a wrong path (a disk image, /dev/zero) is refused at once.
+pub const MAX_SCENE_FILE_BYTES: u64 = 16 << 20;
+
+/// The largest image file read as a texture, in bytes.
+pub const MAX_TEXTURE_FILE_BYTES: u64 = 256 << 20;
+
+/// The most texels one image texture may have (8192 × 8192; stored as 3 bytes each).
+pub const MAX_TEXTURE_TEXELS: u64 = 1 << 26;
+
+/// The most texels all the image textures of one scene may have together.
+pub const MAX_SCENE_TEXELS: u64 = 1 << 27;
+
+/// How far from the camera any position may lie, and the longest length (radius, height,
+/// pattern size), in scene units. Squares and cross products of such values stay below
+/// 10²⁵, far inside f32's range, and f64 checks in the validator see no overflow either.
+pub const MAX_COORDINATE: f64 = 1.0e12;
+
+/// The shortest length a radius, height or pattern size may have, in scene units. Its
+/// square is still a normal f32 number.
+pub const MIN_LENGTH: f64 = 1.0e-12;
+
+/// Indices of refraction: real materials lie between about 1 and 4; values below 1 model
+/// a less dense inside (a bubble). Beyond this range the ratios and their squares that
+/// Snell's law takes would stop being meaningful long before they overflow.
+pub const ETA: RangeInclusive<f32> = 0.1..=10.0;
+
+/// Reflectances (a material's colour, a texture's colours, a texel): a surface returns
+/// at most the light it receives.
+pub const REFLECTANCE: RangeInclusive<f32> = 0.0..=1.0;
+
+/// Radiance-like colours (a light's colour, the background, the ambient light) may be
+/// brighter than white (high dynamic range), up to this per channel.
+pub const MAX_RADIANCE: f32 = 1.0e4;
+
+/// Phong's ambient, diffuse and specular factors: above 1 brightens a surface on purpose
+/// (a glowing lamp), but not without bound.
+pub const MAX_PHONG_FACTOR: f32 = 1.0e3;
+
+/// The Phong exponent; past this the highlight is narrower than f32 can resolve.
+pub const MAX_SHININESS: f32 = 1.0e4;
+
+/// The most reflection or refraction bounces along one path (the scene file's
+/// `max_depth`, `--max-depth`).
+pub const MAX_DEPTH: u32 = 64;
+
+/// The most secondary rays (reflected, refracted, passed straight through) one camera ray
+/// may spawn, shared evenly between the branches of its tree (integrator.rs). A surface
+/// that both reflects and transmits doubles the tree at each bounce; the budget keeps a
+/// sample's cost, and the recursion's stack depth, bounded whatever the depth limit.
+pub const RAY_BUDGET: u32 = 1024;
+
+/// The most anti-aliasing level (N × N subsamples per pixel).
+pub const MAX_AA: u32 = 8;
+
+/// The largest image width or height.
+pub const MAX_IMAGE_SIDE: u32 = 16384;
+
+/// The largest window side the viewer opens (image plus panel); graphics drivers commonly
+/// refuse surfaces beyond it.
+pub const MAX_WINDOW_SIDE: u32 = 8192;
+
+/// The most worker threads a render may use.
+pub const MAX_THREADS: usize = 256;
+
+/// Names from a scene file are shown in messages at most this many characters long.
+pub const MAX_NAME_CHARS: usize = 60;

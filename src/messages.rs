@@ -1,0 +1,84 @@
+//! Text for messages: what the file system said, without the wrappers that repeat a cause
+//! or name an internal temporary file, and names from a scene file made safe to print.
+
+use crate::limits::MAX_NAME_CHARS;
+
+/// The cause of an I/O error in plain words ("No such file or directory (os error 2)"),
+/// without the context (a temporary file's path, say) that other layers wrapped it in.
+pub fn io_message(e: &std::io::Error) -> String {
+    match e.raw_os_error() {
+        Some(code) => std::io::Error::from_raw_os_error(code).to_string(),
+        None => match e.get_ref() {
+            Some(inner) => inner.to_string(),
+            None => e.kind().to_string(),
+        },
+    }
+}
+
+/// `text` as it may appear in a message: control characters (escape sequences, newlines)
+/// written as escapes, and shortened to `MAX_NAME_CHARS` characters with an ellipsis.
+pub fn shown(text: &str) -> String {
+    let mut out = String::new();
+    for (count, c) in text.chars().enumerate() {
+        if count == MAX_NAME_CHARS {
+            out.push('…');
+            break;
+        }
+        if c.is_control() || matches!(c, '\u{200B}'..='\u{200F}' | '\u{202A}'..='\u{202E}') {
+            out.extend(c.escape_default());
+        } else {
+            out.push(c);
+        }
+    }
+    out
+}
+
+/// A number as a person writes it: plainly in the usual range, in exponent form when huge
+/// or tiny (2e19, not 20000000000000000000).
+pub fn number(v: f32) -> String {
+    let a = v.abs();
+    if a == 0.0 || (1e-4..1e7).contains(&a) || !a.is_finite() {
+        v.to_string()
+    } else {
+        format!("{v:e}")
+    }
+}
+
+/// `text` shown, in double quotes.
+pub fn quoted(text: &str) -> String {
+    format!("\"{}\"", shown(text))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn control_characters_are_escaped_and_long_names_cut() {
+        assert_eq!(shown("ball"), "ball");
+        assert_eq!(shown("a\u{1b}[31mred\nx"), "a\\u{1b}[31mred\\nx");
+        let long = "é".repeat(5_000_000);
+        let s = shown(&long);
+        assert_eq!(s.chars().count(), MAX_NAME_CHARS + 1);
+        assert!(s.ends_with('…'));
+        assert_eq!(quoted("x\ty"), "\"x\\ty\"");
+    }
+
+    #[test]
+    fn numbers_read_as_written() {
+        assert_eq!(number(-1.0), "-1");
+        assert_eq!(number(1.43), "1.43");
+        assert_eq!(number(2e19), "2e19");
+        assert_eq!(number(f32::MAX), "3.4028235e38");
+        assert_eq!(number(1e-9), "1e-9");
+        assert_eq!(number(f32::NAN), "NaN");
+    }
+
+    #[test]
+    fn io_messages_name_the_cause_once() {
+        let e = std::io::Error::from_raw_os_error(2);
+        assert_eq!(io_message(&e), "No such file or directory (os error 2)");
+        let wrapped = std::io::Error::new(e.kind(), "at path /tmp/.x.tmp");
+        assert_eq!(io_message(&wrapped), "at path /tmp/.x.tmp");
+    }
+}
