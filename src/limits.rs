@@ -61,6 +61,10 @@ pub const MAX_DEPTH: u32 = 64;
 /// sample's cost, and the recursion's stack depth, bounded whatever the depth limit.
 pub const RAY_BUDGET: u32 = 1024;
 
+/// The stack of every thread that traces rays (`render::thread_pool`): a sample's ray tree
+/// recurses once per ray of its budget, and a level of it takes a few KiB.
+pub const RENDER_STACK_BYTES: usize = 32 << 20;
+
 /// The most anti-aliasing level (N × N subsamples per pixel).
 pub const MAX_AA: u32 = 8;
 

@@ -18,9 +18,15 @@ pub fn io_message(e: &std::io::Error) -> String {
 /// `text` as it may appear in a message: control characters (escape sequences, newlines)
 /// written as escapes, and shortened to `MAX_NAME_CHARS` characters with an ellipsis.
 pub fn shown(text: &str) -> String {
+    shown_within(text, MAX_NAME_CHARS)
+}
+
+/// `shown`, for longer text (a parser's message that quotes the file): at most `max`
+/// characters before the ellipsis.
+pub fn shown_within(text: &str, max: usize) -> String {
     let mut out = String::new();
     for (count, c) in text.chars().enumerate() {
-        if count == MAX_NAME_CHARS {
+        if count == max {
             out.push('…');
             break;
         }

@@ -14,6 +14,9 @@ pub struct ImageTexture {
     texels: Vec<u8>,
 }
 
+/// An image file's bytes, its format as guessed from them, and the size its header declares.
+type CheckedFile = (Vec<u8>, Option<image::ImageFormat>, (u32, u32));
+
 /// Why an image file cannot be a texture.
 #[derive(Debug, thiserror::Error)]
 pub enum TextureError {
@@ -40,23 +43,27 @@ pub enum TextureError {
 }
 
 impl ImageTexture {
-    /// Reads an image file, refusing anything but a regular file within the limits: the
-    /// size is read from the header before any texel is decoded.
-    pub fn load(path: &Path) -> Result<Self, TextureError> {
+    /// The width and height an image file declares, read from its header alone, after
+    /// checking that it is a regular file of a size a texture may have.
+    pub fn probe(path: &Path) -> Result<(u32, u32), TextureError> {
+        Self::read_checked(path).map(|(_, _, size)| size)
+    }
+
+    /// The file's bytes, format and declared size, within the limits.
+    fn read_checked(path: &Path) -> Result<CheckedFile, TextureError> {
         use crate::limits::{MAX_TEXTURE_FILE_BYTES, MAX_TEXTURE_TEXELS};
-        let meta = std::fs::metadata(path)
-            .map_err(|e| TextureError::Io(crate::messages::io_message(&e)))?;
+        let io = |e: std::io::Error| TextureError::Io(crate::messages::io_message(&e));
+        let meta = std::fs::metadata(path).map_err(io)?;
         if !meta.is_file() {
             return Err(TextureError::NotAFile);
         }
         if meta.len() > MAX_TEXTURE_FILE_BYTES {
             return Err(TextureError::FileTooLarge { bytes: meta.len() });
         }
-        let bytes =
-            std::fs::read(path).map_err(|e| TextureError::Io(crate::messages::io_message(&e)))?;
+        let bytes = std::fs::read(path).map_err(io)?;
         let reader = image::ImageReader::new(std::io::Cursor::new(&bytes[..]))
             .with_guessed_format()
-            .map_err(|e| TextureError::Io(crate::messages::io_message(&e)))?;
+            .map_err(io)?;
         let format = reader.format();
         let (width, height) = reader
             .into_dimensions()
@@ -67,6 +74,14 @@ impl ImageTexture {
         if width as u64 * height as u64 > MAX_TEXTURE_TEXELS {
             return Err(TextureError::TooManyTexels { width, height });
         }
+        Ok((bytes, format, (width, height)))
+    }
+
+    /// Reads an image file, refusing anything but a regular file within the limits: the
+    /// size is read from the header before any texel is decoded.
+    pub fn load(path: &Path) -> Result<Self, TextureError> {
+        use crate::limits::MAX_TEXTURE_TEXELS;
+        let (bytes, format, (width, height)) = Self::read_checked(path)?;
         // JPEG decoders fill a truncated stream with grey rather than fail; a complete
         // stream ends with the end-of-image marker (trailing padding aside).
         if format == Some(image::ImageFormat::Jpeg) && !ends_with_jpeg_eoi(&bytes) {

@@ -426,7 +426,7 @@ fn headline(
         "| rays traced: primary / shadow / secondary | {} / {} / {} |",
         rays.primary, rays.shadow, rays.secondary
     )?;
-    let one = rayon::ThreadPoolBuilder::new().num_threads(1).build()?;
+    let one = prism::render::thread_pool(Some(1))?;
     let single = one.install(|| pass_seconds(prepared, scene.camera, w, h, runs));
     writeln!(
         md,

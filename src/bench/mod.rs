@@ -49,6 +49,11 @@ pub enum BenchKind {
 }
 
 pub fn run(args: BenchArgs) -> Result<()> {
+    let pool = prism::render::thread_pool(None)?;
+    pool.install(|| run_in_pool(args))
+}
+
+fn run_in_pool(args: BenchArgs) -> Result<()> {
     match args.what {
         BenchKind::Numerics { runs } => numerics::run(runs.max(1)),
         BenchKind::Convergence {

@@ -92,6 +92,14 @@ fn view(_: ViewArgs) -> Result<()> {
     anyhow::bail!("this prism was built without the viewer feature; use `prism render`")
 }
 
+/// Panics when `PRISM_INJECT_PANIC` is set: the tests' way to check that a panic in a
+/// render thread is reported (exit code 1, or a message in the viewer), not swallowed.
+pub fn injected_panic() {
+    if std::env::var_os("PRISM_INJECT_PANIC").is_some() {
+        panic!("PRISM_INJECT_PANIC is set: a deliberate panic, to test how one is reported");
+    }
+}
+
 /// The scene file to load: the one given, or the seed scene.
 pub fn scene_path(given: Option<PathBuf>) -> PathBuf {
     given.unwrap_or_else(prism::seed_scene_path)

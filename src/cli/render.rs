@@ -88,9 +88,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
     ImageFormat::from_path(&args.out)?;
     // Claim the output file first: an unwritable path fails now, not after the render.
     let pending = PendingFile::create(&args.out)?;
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(args.threads.map_or(0, usize::from))
-        .build()
+    let pool = prism::render::thread_pool(args.threads.map(usize::from))
         .context("cannot start the worker threads")?;
 
     let prepared = Arc::new(PreparedScene::new(&scene));
@@ -106,6 +104,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
     );
     let start = Instant::now();
     let job = pool.install(|| {
+        rayon::join(super::injected_panic, || ());
         prism::render::render(prepared, scene.camera, settings, |job, stats| {
             bar.set_position(job.passes_done() as u64);
             bar.set_message(format!(

@@ -501,6 +501,36 @@ mod tests {
         assert!(bvh.depth() <= MAX_DEPTH + 1);
     }
 
+    /// A ray with a NaN in it (which validation keeps from ever being traced) must still
+    /// not send traversal through an unused lane's dummy index.
+    #[test]
+    fn rays_with_nan_traverse_without_panicking() {
+        // Five primitives leave unused lanes in the collapsed nodes.
+        for n in [1, 5, 3000] {
+            let spheres = grid_spheres(n);
+            let bounds: Vec<Aabb> = spheres.iter().map(|s| s.bounds()).collect();
+            let (bvh, _) = Bvh::build(&bounds);
+            for (origin, dir) in [
+                (Vec3::new(f32::NAN, 0.0, 0.0), Vec3::NEG_Z),
+                (Vec3::ZERO, Vec3::new(f32::NAN, f32::NAN, f32::NAN)),
+                (Vec3::splat(f32::INFINITY), Vec3::NEG_Z),
+            ] {
+                let q = RayQuery::new(Ray::new(origin, dir));
+                let mut tested = 0;
+                bvh.closest(&q, f32::INFINITY, |i, _| {
+                    assert!((i as usize) < n);
+                    tested += 1;
+                    None
+                });
+                bvh.visit(&q, f32::INFINITY, |i| {
+                    assert!((i as usize) < n);
+                    true
+                });
+                assert!(tested <= n);
+            }
+        }
+    }
+
     /// A box query visits every primitive whose box overlaps the query box (and, being
     /// by leaf, possibly a few more).
     #[test]

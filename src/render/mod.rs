@@ -19,7 +19,21 @@ use crate::camera::Camera;
 use crate::scene::PreparedScene;
 use std::sync::Arc;
 
-/// Renders to convergence in one go; `on_pass` sees each finished pass.
+/// The worker threads a render runs on: `threads` of them (all cores when None), each with
+/// a stack deep enough for the longest ray tree (`limits::RENDER_STACK_BYTES`). Run passes
+/// inside its `install`; rayon's global pool has smaller stacks.
+pub fn thread_pool(
+    threads: Option<usize>,
+) -> Result<rayon::ThreadPool, rayon::ThreadPoolBuildError> {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads.unwrap_or(0))
+        .stack_size(crate::limits::RENDER_STACK_BYTES)
+        .thread_name(|i| format!("prism-worker-{i}"))
+        .build()
+}
+
+/// Renders to convergence in one go; `on_pass` sees each finished pass. Call it inside
+/// `thread_pool(..).install` (see there).
 pub fn render(
     scene: Arc<PreparedScene>,
     camera: Camera,

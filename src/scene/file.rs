@@ -207,7 +207,8 @@ pub fn parse_scene(source: &str, path: &Path, base_dir: &Path) -> Result<Scene, 
             path: path.to_path_buf(),
             line,
             column,
-            message: e.message().trim().to_string(),
+            // The parser may quote the file (an unknown key of any length, say).
+            message: crate::messages::shown_within(e.message().trim(), 400),
         }
     })?;
     let eye = file.camera.get_ref().eye;
@@ -439,6 +440,7 @@ impl Validator<'_> {
                 })
             })
             .collect::<Result<Vec<_>, SceneError>>()?;
+        self.check_texel_budget(&file.textures)?;
         let mut images = Images::default();
         let textures = file
             .textures
@@ -544,6 +546,46 @@ impl Validator<'_> {
             lights,
             objects,
         })
+    }
+
+    /// Refuses the image texture that takes the scene's images past `MAX_SCENE_TEXELS`,
+    /// from their headers, before any is decoded. (A file that cannot be read is reported
+    /// when it is loaded.)
+    fn check_texel_budget(
+        &self,
+        textures: &BTreeMap<String, Spanned<TextureDef>>,
+    ) -> Result<(), SceneError> {
+        let mut seen = std::collections::HashSet::new();
+        let mut total = 0u64;
+        for (name, t) in textures {
+            let (span, t) = (t.span(), t.get_ref());
+            let (Some(rel), "image") = (&t.path, t.kind.as_str()) else {
+                continue;
+            };
+            let full = self.base_dir.join(rel);
+            if !seen.insert(full.clone()) {
+                continue;
+            }
+            let Ok((w, h)) = ImageTexture::probe(&full) else {
+                continue;
+            };
+            total += w as u64 * h as u64;
+            if total > limits::MAX_SCENE_TEXELS {
+                let label = format!("textures.{}", crate::messages::shown(name));
+                let at = Item { span, name: &label };
+                return Err(self.field_error(
+                    &at,
+                    "path",
+                    format!(
+                        "image {} brings the scene's textures to {total} texels, more than \
+                         the {} all of them may have together",
+                        quoted(&full.display().to_string()),
+                        limits::MAX_SCENE_TEXELS
+                    ),
+                ));
+            }
+        }
+        Ok(())
     }
 
     fn vertices(&self, at: &Item, vs: &[P3]) -> Result<Vec<Vec3>, SceneError> {
@@ -825,12 +867,10 @@ impl Validator<'_> {
     }
 }
 
-/// The image textures of one scene: each file decoded once, and all of them together
-/// within `MAX_SCENE_TEXELS`.
+/// The image textures of one scene, each file decoded once.
 #[derive(Default)]
 struct Images {
     loaded: HashMap<PathBuf, Arc<ImageTexture>>,
-    texels: u64,
 }
 
 impl Images {
@@ -838,18 +878,12 @@ impl Images {
         if let Some(img) = self.loaded.get(path) {
             return Ok(img.clone());
         }
-        let shown = quoted(&path.display().to_string());
-        let img =
-            ImageTexture::load(path).map_err(|e| format!("cannot load image {shown}: {e}"))?;
-        self.texels += img.texel_count();
-        if self.texels > limits::MAX_SCENE_TEXELS {
-            return Err(format!(
-                "image {shown} brings the scene's textures to {} texels, more than the {} \
-                 all of them may have together",
-                self.texels,
-                limits::MAX_SCENE_TEXELS
-            ));
-        }
+        let img = ImageTexture::load(path).map_err(|e| {
+            format!(
+                "cannot load image {}: {e}",
+                quoted(&path.display().to_string())
+            )
+        })?;
         let img = Arc::new(img);
         self.loaded.insert(path.to_path_buf(), img.clone());
         Ok(img)

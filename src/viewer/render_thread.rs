@@ -131,6 +131,10 @@ struct Worker {
 
 impl Worker {
     fn run(mut self) {
+        let pool = match prism::render::thread_pool(None) {
+            Ok(pool) => pool,
+            Err(e) => return self.fail(format!("cannot start the worker threads: {e}")),
+        };
         let mut waiting = false;
         loop {
             // Idle (converged, or a preview shown): sleep until a request comes.
@@ -158,19 +162,22 @@ impl Worker {
             // A panic in the tracer is a bug: report it and wait for a change, rather
             // than die silently or fail again and again on the same pass.
             let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-                if self.moving {
-                    self.preview(&cancelled);
-                    return true;
-                }
-                match self.job.step(&cancelled) {
-                    PassOutcome::Finished(stats) => {
-                        self.publish(stats.seconds);
-                        false
+                pool.install(|| {
+                    crate::cli::injected_panic();
+                    if self.moving {
+                        self.preview(&cancelled);
+                        return true;
                     }
-                    PassOutcome::Cancelled => false,
-                    // The last finished pass already published the converged image.
-                    PassOutcome::Converged => true,
-                }
+                    match self.job.step(&cancelled) {
+                        PassOutcome::Finished(stats) => {
+                            self.publish(stats.seconds);
+                            false
+                        }
+                        PassOutcome::Cancelled => false,
+                        // The last finished pass already published the converged image.
+                        PassOutcome::Converged => true,
+                    }
+                })
             }));
             waiting = match outcome {
                 Ok(waiting) => waiting,
