@@ -1,6 +1,8 @@
 //! The viewer in a real window under Xvfb, driven by xdotool (tests/window/e2e.sh): the
 //! screenshot key saves exactly what `prism render` makes with the same settings, a camera
-//! key restarts accumulation, and Ctrl+Q closes the window and ends the render thread.
+//! key restarts accumulation, a window narrower than the panel breaks nothing, and Ctrl+Q
+//! closes the window (with the keyboard focus in the panel too) and ends the render thread.
+//! tests/window/panic.sh checks that a panic in the render thread is shown and reported.
 //!
 //! Needs xvfb-run, xdotool and ImageMagick (`.ci/run` installs them). Without them the test
 //! says so and passes, unless PRISM_REQUIRE_WINDOW_TEST is set, as it is in CI.
@@ -26,9 +28,9 @@ fn shots(dir: &Path) -> Vec<PathBuf> {
     v
 }
 
-#[cfg(feature = "viewer")]
-#[test]
-fn viewer_window_end_to_end() {
+/// Whether the window tools are here; without them the test is skipped, unless it is
+/// required.
+fn window_tools() -> bool {
     let required = std::env::var_os("PRISM_REQUIRE_WINDOW_TEST").is_some();
     let missing: Vec<&str> = ["xvfb-run", "xdotool", "import"]
         .into_iter()
@@ -37,6 +39,15 @@ fn viewer_window_end_to_end() {
     if !missing.is_empty() {
         assert!(!required, "the window test needs {missing:?}: run .ci/run");
         eprintln!("skipping the window test: {missing:?} not installed (see docs/testing.md)");
+        return false;
+    }
+    true
+}
+
+#[cfg(feature = "viewer")]
+#[test]
+fn viewer_window_end_to_end() {
+    if !window_tools() {
         return;
     }
     let work = tempfile::tempdir().unwrap();
@@ -110,4 +121,42 @@ fn viewer_window_end_to_end() {
         panel_pixel.0.iter().any(|&c| c > 10),
         "panel missing: {panel_pixel:?}"
     );
+    assert!(!log.contains("panicked"), "{log}");
+}
+
+#[cfg(feature = "viewer")]
+#[test]
+fn a_panic_in_the_render_thread_is_shown_and_reported() {
+    if !window_tools() {
+        return;
+    }
+    let work = tempfile::tempdir().unwrap();
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/window/panic.sh");
+    let out = Command::new("xvfb-run")
+        .args(["-a", "-s", "-screen 0 1280x800x24"])
+        .arg(&script)
+        .arg(env!("CARGO_BIN_EXE_prism"))
+        .arg(work.path())
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let log = std::fs::read_to_string(work.path().join("viewer.log")).unwrap_or_default();
+    assert!(
+        out.status.success(),
+        "panic.sh failed\n{stdout}\nviewer log: {log}"
+    );
+    assert!(stdout.contains("viewer exited with 1"), "{stdout}\n{log}");
+    assert!(log.contains("PRISM_INJECT_PANIC"), "{log}");
+    // The panel shows the failure in red: some strongly red pixels in the panel.
+    let screen = image::open(work.path().join("panic.png"))
+        .unwrap()
+        .into_rgb8();
+    let red = (0..300)
+        .flat_map(|x| (0..240).map(move |y| (x, y)))
+        .filter(|&(x, y)| {
+            let [r, g, b] = screen.get_pixel(x, y).0;
+            r > 150 && g < 120 && b < 120
+        })
+        .count();
+    assert!(red > 20, "no red error text in the panel ({red} pixels)");
 }

@@ -31,7 +31,11 @@ fn exercise(bytes: &[u8], base: &Path) {
         Err(e) => {
             let message = e.to_string();
             assert!(!message.is_empty());
-            assert!(message.chars().count() < 2000, "a message of {} chars", message.len());
+            assert!(
+                message.chars().count() < 2000,
+                "a message of {} chars",
+                message.len()
+            );
             assert!(
                 !message.chars().any(|c| c.is_control()),
                 "a control character in {message:?}"

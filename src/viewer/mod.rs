@@ -289,7 +289,6 @@ impl App {
                 && self.status.error.as_ref() != Some(e)
             {
                 eprintln!("prism: error: the render failed: {e}");
-                self.panel.message = Some((format!("The render failed: {e}"), true));
                 self.render_error = Some(e.clone());
             }
             self.status = p.status.clone();

@@ -56,11 +56,17 @@ impl PanelState {
         let mut changes = Changes::default();
         egui::ScrollArea::vertical().show(ui, |ui| {
             ui.heading("prism");
+            // A failed render matters more than any control: it goes first.
+            if let Some(e) = &status.error {
+                let text = format!("The render failed: {e}. Change anything to try again.");
+                ui.label(RichText::new(text).color(ui.visuals().error_fg_color));
+                ui.separator();
+            }
             self.materials(ui, &mut changes);
             ui.separator();
             ui.label(RichText::new("Anti-aliasing").strong());
             let aa = ui.add(
-                Slider::new(&mut self.aa, 1..=8)
+                Slider::new(&mut self.aa, 1..=prism::limits::MAX_AA)
                     .clamping(SliderClamping::Always)
                     .text("level N (N×N)"),
             );

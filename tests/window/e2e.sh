@@ -3,7 +3,9 @@
 # docs/testing.md). Usage: e2e.sh PRISM_BINARY WORK_DIR
 # Opens the viewer on the seed scene, waits for convergence, takes a screenshot with F12,
 # moves the camera with W, waits again, takes a second screenshot with P, photographs the
-# whole screen, and quits with Ctrl+Q. Leaves the viewer's log and the images in WORK_DIR.
+# whole screen, squeezes the window narrower than its panel and back, moves the keyboard
+# focus into the panel with Tab, and quits with Ctrl+Q. Leaves the viewer's log and the
+# images in WORK_DIR.
 set -euo pipefail
 prism=$1
 work=$2
@@ -48,6 +50,18 @@ xdotool key --window "$window" p
 wait_for "saved" 2 30
 import -window root "$work/screen.png"
 
+# Narrower than the panel: no image fits beside it, and nothing may break.
+xdotool windowsize --sync "$window" 290 240 || xdotool windowsize "$window" 290 240
+sleep 1
+kill -0 $pid 2>/dev/null || { echo "viewer died when narrowed:"; cat "$log"; exit 1; }
+import -window root "$work/narrow.png"
+xdotool windowsize "$window" 620 240
+wait_for "converged" 3 120
+
+# Tab moves the keyboard focus into the panel; Ctrl+Q must still quit.
+xdotool windowfocus --sync "$window"
+xdotool key --window "$window" Tab
+sleep 0.3
 # The window may vanish before xdotool sends the key release; the check below decides.
 xdotool key --window "$window" ctrl+q || true
 for _ in $(seq 100); do

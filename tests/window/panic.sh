@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# The viewer when its render thread panics (PRISM_INJECT_PANIC makes every pass panic):
+# the panel must say so, the window must stay usable, and the exit code must be 1.
+# Usage (inside xvfb-run): panic.sh PRISM_BINARY WORK_DIR
+set -euo pipefail
+prism=$1
+work=$2
+log=$work/viewer.log
+export XDG_RUNTIME_DIR=$work/xdg
+mkdir -p "$XDG_RUNTIME_DIR"
+chmod 700 "$XDG_RUNTIME_DIR"
+
+PRISM_INJECT_PANIC=1 "$prism" view --width 320 --height 240 >"$log" 2>&1 &
+pid=$!
+trap 'kill $pid 2>/dev/null || true' EXIT
+
+window=""
+for _ in $(seq 300); do
+    window=$(xdotool search --name '^prism$' 2>/dev/null | head -1 || true)
+    [ -n "$window" ] && break
+    sleep 0.1
+done
+[ -n "$window" ] || { echo "no window appeared:"; cat "$log"; exit 1; }
+for _ in $(seq 300); do
+    grep -q "the render failed" "$log" && break
+    sleep 0.1
+done
+grep -q "the render failed" "$log" || { echo "no failure reported:"; cat "$log"; exit 1; }
+sleep 1
+import -window root "$work/panic.png"
+xdotool windowfocus --sync "$window"
+xdotool key --window "$window" ctrl+q || true
+for _ in $(seq 100); do
+    kill -0 $pid 2>/dev/null || break
+    sleep 0.1
+done
+if kill -0 $pid 2>/dev/null; then echo "viewer did not quit on Ctrl+Q"; exit 1; fi
+set +e
+wait $pid
+code=$?
+set -e
+echo "viewer exited with $code"
