@@ -616,6 +616,12 @@ fn tolerances_are_relative_to_the_shape() {
             "size {s}: nothing drawn"
         );
     }
+    // A triangle whose f32 cross products underflow is refused, not drawn as nothing.
+    d.refuses(
+        &format!("{SPHERE}\n[[triangles]]\nvertices = [[0, 0, -1e-25], [1e-25, 0, -1e-25], [0, 1e-25, -1e-25]]\n"),
+        &[],
+        &["triangles[0]", "too small for f32"],
+    );
     // Truly collinear or flat input is still refused.
     d.refuses(
         &format!("{SPHERE}\n[[polygons]]\nvertices = [[0, 0, -5], [1, 0, -5], [2, 1e-9, -5], [1, 1, -5]]\n"),

@@ -10,7 +10,7 @@ use std::sync::Arc;
 /// A folder laid out like the repository's assets/ (scenes/ beside earth.jpg), with a small
 /// Earth so that the seed scene and its mutants load their texture quickly.
 fn textures_dir() -> PathBuf {
-    let root = std::env::temp_dir().join(format!("prism-fuzz-{}", std::process::id()));
+    let root = std::env::temp_dir().join("prism-fuzz-assets");
     let scenes = root.join("scenes");
     if !scenes.is_dir() {
         std::fs::create_dir_all(&scenes).expect("a temporary folder");

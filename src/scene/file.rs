@@ -532,6 +532,13 @@ impl Validator<'_> {
                 if !has_volume(&v) {
                     return Err(self.error(at, "the four vertices lie in one plane (no volume)"));
                 }
+                let faces = [[0, 1, 2], [0, 1, 3], [0, 2, 3], [1, 2, 3]];
+                if !faces
+                    .iter()
+                    .all(|&[a, b, c]| representable(v[a], v[b], v[c]))
+                {
+                    return Err(self.field_error(at, "vertices", TOO_SMALL));
+                }
                 Ok(ShapeDesc::Tetrahedron {
                     vertices: [v[0], v[1], v[2], v[3]],
                 })
@@ -914,14 +921,14 @@ fn has_volume(v: &[Vec3]) -> bool {
 /// relative to the polygon's extent, and a corner counts as straight when its vertex lies
 /// within that tolerance of its neighbours' line, so a regular polygon of many sides passes
 /// at any scale.
-pub fn check_polygon(v: &[Vec3]) -> Result<(), String> {
-    if v.len() < 3 {
+pub fn check_polygon(vertices: &[Vec3]) -> Result<(), String> {
+    if vertices.len() < 3 {
         return Err(format!(
             "a polygon needs at least 3 vertices, got {}",
-            v.len()
+            vertices.len()
         ));
     }
-    let v = normalized(v);
+    let v = normalized(vertices);
     let n = v.len();
     // f32 vertices are rounded to about 6e-8 of their extent; these are well beyond that.
     const COINCIDENT: f64 = 1e-6;
@@ -970,5 +977,23 @@ pub fn check_polygon(v: &[Vec3]) -> Result<(), String> {
             ));
         }
     }
+    // What the tracer builds from it, in f32: the fan of triangles and the plane's normal.
+    let fan_ok = (1..n - 1).all(|i| representable(vertices[0], vertices[i], vertices[i + 1]));
+    let normal_ok = crate::numerics::try_normalize(
+        (vertices[1] - vertices[0]).cross(vertices[2] - vertices[1]),
+    )
+    .is_some();
+    if !(fan_ok && normal_ok) {
+        return Err(TOO_SMALL.into());
+    }
     Ok(())
+}
+
+const TOO_SMALL: &str = "the shape is too small for f32: its edges' cross products underflow \
+                         (scale the scene up)";
+
+/// Whether f32 can hold the triangle the tracer builds from these corners (a normal of
+/// non-zero length).
+fn representable(a: Vec3, b: Vec3, c: Vec3) -> bool {
+    crate::geometry::Triangle::new(a, b, c).is_some()
 }
