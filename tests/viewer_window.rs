@@ -28,6 +28,20 @@ fn shots(dir: &Path) -> Vec<PathBuf> {
     v
 }
 
+/// Runs tests/window/SCRIPT with prism and the work folder, on a virtual screen.
+fn under_xvfb(script: &str, work: &Path) -> std::process::Output {
+    let script = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/window")
+        .join(script);
+    Command::new("xvfb-run")
+        .args(["-a", "-s", "-screen 0 1280x800x24"])
+        .arg(&script)
+        .arg(env!("CARGO_BIN_EXE_prism"))
+        .arg(work)
+        .output()
+        .unwrap()
+}
+
 /// Whether the window tools are here; without them the test is skipped, unless it is
 /// required.
 fn window_tools() -> bool {
@@ -51,14 +65,7 @@ fn viewer_window_end_to_end() {
         return;
     }
     let work = tempfile::tempdir().unwrap();
-    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/window/e2e.sh");
-    let out = Command::new("xvfb-run")
-        .args(["-a", "-s", "-screen 0 1280x800x24"])
-        .arg(&script)
-        .arg(env!("CARGO_BIN_EXE_prism"))
-        .arg(work.path())
-        .output()
-        .unwrap();
+    let out = under_xvfb("e2e.sh", work.path());
     let stdout = String::from_utf8_lossy(&out.stdout);
     let stderr = String::from_utf8_lossy(&out.stderr);
     let log = std::fs::read_to_string(work.path().join("viewer.log")).unwrap_or_default();
@@ -131,14 +138,7 @@ fn a_panic_in_the_render_thread_is_shown_and_reported() {
         return;
     }
     let work = tempfile::tempdir().unwrap();
-    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/window/panic.sh");
-    let out = Command::new("xvfb-run")
-        .args(["-a", "-s", "-screen 0 1280x800x24"])
-        .arg(&script)
-        .arg(env!("CARGO_BIN_EXE_prism"))
-        .arg(work.path())
-        .output()
-        .unwrap();
+    let out = under_xvfb("panic.sh", work.path());
     let stdout = String::from_utf8_lossy(&out.stdout);
     let log = std::fs::read_to_string(work.path().join("viewer.log")).unwrap_or_default();
     assert!(
