@@ -18,10 +18,7 @@ pub struct Camera {
     pub up: Vec3,
 }
 
-/// Pitch stays short of straight up or down, where yaw would lose its meaning.
-pub const MAX_PITCH: f32 = 89.0;
-pub const MIN_VFOV: f32 = 0.01;
-pub const MAX_VFOV: f32 = 179.0;
+use crate::limits::MAX_PITCH;
 
 impl Camera {
     /// A camera at `eye` looking along `direction` with +y up; None when `direction` has

@@ -36,6 +36,13 @@ pub const MIN_LENGTH: f64 = 1.0e-12;
 /// Snell's law takes would stop being meaningful long before they overflow.
 pub const ETA: RangeInclusive<f32> = 0.1..=10.0;
 
+/// The camera's vertical field of view, in degrees (file, panel, scroll zoom).
+pub const VFOV: RangeInclusive<f32> = 0.01..=179.0;
+
+/// How far the camera may pitch above or below the plane perpendicular to `up`, in
+/// degrees: short of straight up or down, where yaw would lose its meaning.
+pub const MAX_PITCH: f32 = 89.0;
+
 /// Reflectances (a material's colour, a texture's colours, a texel): a surface returns
 /// at most the light it receives.
 pub const REFLECTANCE: RangeInclusive<f32> = 0.0..=1.0;

@@ -2,20 +2,15 @@
 //! file itself: a bad value is refused with a message, never rendered.
 
 use super::description::Scene;
-use crate::camera::{Camera, MAX_PITCH, MAX_VFOV, MIN_VFOV};
+use crate::camera::Camera;
+use crate::limits::{ETA, MAX_COORDINATE, MAX_PITCH, VFOV};
 use thiserror::Error;
-
-/// The indices of refraction the viewer offers.
-pub const ETA_RANGE: std::ops::RangeInclusive<f32> = 1.0..=3.0;
-/// How far from the origin a camera may stand (f32 keeps ~7 digits: beyond this even the
-/// seed scene's metre-sized details would fall below rounding).
-pub const MAX_COORDINATE: f32 = 1.0e7;
 
 #[derive(Debug, Error, PartialEq)]
 pub enum EditError {
     #[error("no object number {0}")]
     NoSuchObject(usize),
-    #[error("{object}: eta {value} must be a number from {} to {}", ETA_RANGE.start(), ETA_RANGE.end())]
+    #[error("{object}: eta {value} must be a number from {} to {}", ETA.start(), ETA.end())]
     Eta { object: String, value: f32 },
     #[error("{object}: transparency {value} must be a number from 0 to 1")]
     Transparency { object: String, value: f32 },
@@ -29,7 +24,7 @@ impl Scene {
             .objects
             .get_mut(object)
             .ok_or(EditError::NoSuchObject(object))?;
-        if !ETA_RANGE.contains(&eta) {
+        if !ETA.contains(&eta) {
             return Err(EditError::Eta {
                 object: o.name.clone(),
                 value: eta,
@@ -58,7 +53,8 @@ impl Scene {
 /// Checks a camera set by hand: finite, within reach of f32, pitch and field of view in range.
 pub fn check_camera(c: &Camera) -> Result<(), EditError> {
     let bad = |m: String| Err(EditError::Camera(m));
-    if !c.eye.is_finite() || c.eye.abs().max_element() > MAX_COORDINATE {
+    // Like every position, within reach of the scene's origin (limits.rs).
+    if !c.eye.is_finite() || c.eye.abs().max_element() as f64 > MAX_COORDINATE {
         return bad(format!(
             "eye {} must be finite and within ±{MAX_COORDINATE:e}",
             c.eye
@@ -73,10 +69,12 @@ pub fn check_camera(c: &Camera) -> Result<(), EditError> {
     if !(-MAX_PITCH..=MAX_PITCH).contains(&c.pitch) {
         return bad(format!("pitch {} must lie in ±{MAX_PITCH}°", c.pitch));
     }
-    if !(MIN_VFOV..=MAX_VFOV).contains(&c.vfov) {
+    if !VFOV.contains(&c.vfov) {
         return bad(format!(
-            "field of view {} must lie in {MIN_VFOV}..{MAX_VFOV}°",
-            c.vfov
+            "field of view {} must lie in {}..{}°",
+            c.vfov,
+            VFOV.start(),
+            VFOV.end()
         ));
     }
     Ok(())
@@ -102,7 +100,11 @@ mod tests {
             .unwrap();
         s.set_eta(glass, 2.0).unwrap();
         assert_eq!(s.objects[glass].material.eta, Some(2.0));
-        for bad in [f32::NAN, f32::INFINITY, 0.5, 3.5, -1.0] {
+        // The file's range, one definition (limits::ETA): 0.5 and 3.5 are fine, these not.
+        s.set_eta(glass, 0.5).unwrap();
+        s.set_eta(glass, 3.5).unwrap();
+        s.set_eta(glass, 2.0).unwrap();
+        for bad in [f32::NAN, f32::INFINITY, 0.05, 10.5, -1.0, 2e19] {
             let e = s.set_eta(glass, bad).unwrap_err();
             assert!(e.to_string().contains("eta"), "{e}");
             assert_eq!(

@@ -3,7 +3,7 @@
 
 use super::description::{RenderDefaults, Scene, SceneObject, ShapeDesc};
 use super::error::{SceneError, line_column};
-use crate::camera::{Camera, MAX_VFOV, MIN_VFOV};
+use crate::camera::Camera;
 use crate::light::PointLight;
 use crate::limits;
 use crate::material::Material;
@@ -609,7 +609,8 @@ impl Validator<'_> {
         };
         let c = c.get_ref();
         let eye = self.position(&at, "eye", c.eye)?;
-        let vfov = self.in_range(&at, "fov", c.fov, MIN_VFOV, MAX_VFOV)?;
+        let (lo, hi) = (*limits::VFOV.start(), *limits::VFOV.end());
+        let vfov = self.in_range(&at, "fov", c.fov, lo, hi)?;
         let ways = [
             c.look_at.is_some(),
             c.direction.is_some(),

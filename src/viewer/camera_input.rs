@@ -1,6 +1,7 @@
 //! Moving the camera by hand: drag to look around, WASD/QE to fly, scroll to zoom.
 
-use prism::camera::{Camera, MAX_PITCH};
+use prism::camera::Camera;
+use prism::limits::{MAX_PITCH, VFOV};
 use winit::keyboard::KeyCode;
 
 /// Degrees of turn per pixel dragged.
@@ -76,7 +77,7 @@ impl CameraInput {
 
     /// Zooms by `lines` scroll notches (positive: in, narrowing the field of view).
     pub fn scroll(camera: &mut Camera, lines: f32) {
-        camera.vfov = (camera.vfov * 0.9f32.powf(lines)).clamp(1.0, 150.0);
+        camera.vfov = (camera.vfov * 0.9f32.powf(lines)).clamp(*VFOV.start(), *VFOV.end());
     }
 }
 
@@ -126,6 +127,6 @@ mod tests {
         CameraInput::scroll(&mut c, 1.0);
         assert!((c.vfov - 27.0).abs() < 1e-4);
         CameraInput::scroll(&mut c, -100.0);
-        assert_eq!(c.vfov, 150.0);
+        assert_eq!(c.vfov, *VFOV.end());
     }
 }

@@ -2,9 +2,10 @@
 
 use super::render_thread::Status;
 use egui::{DragValue, RichText, Slider, SliderClamping};
-use prism::camera::{Camera, MAX_PITCH};
+use prism::camera::Camera;
+use prism::limits::{ETA, MAX_PITCH, VFOV};
 use prism::scene::Scene;
-use prism::scene::edit::{ETA_RANGE, check_camera};
+use prism::scene::edit::check_camera;
 
 /// Panel width in points.
 pub const PANEL_WIDTH: f32 = 300.0;
@@ -112,7 +113,9 @@ impl PanelState {
             let name = self.scene.objects[i].name.clone();
             let mut eta = self.scene.objects[i].material.eta.unwrap_or(1.0);
             let r = ui.add(
-                Slider::new(&mut eta, *ETA_RANGE.start()..=*ETA_RANGE.end())
+                // The whole range a file may give, on a log scale centred on 1.
+                Slider::new(&mut eta, ETA)
+                    .logarithmic(true)
                     .clamping(SliderClamping::Always)
                     .max_decimals(4)
                     .text(&name),
@@ -170,7 +173,8 @@ impl PanelState {
                 .text("pitch °"),
         );
         ui.add(
-            Slider::new(&mut c.vfov, 1.0..=150.0)
+            Slider::new(&mut c.vfov, VFOV)
+                .logarithmic(true)
                 .clamping(SliderClamping::Always)
                 .text("field of view °"),
         );
