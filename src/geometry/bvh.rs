@@ -101,6 +101,15 @@ impl WideNode {
     }
 }
 
+/// Whether traversal can follow the ray: a finite origin and direction. A NaN in either
+/// would keep every slab interval open (`enter` leaves an interval alone where a
+/// comparison fails), so the ray would "enter" unused lanes and follow their dummy index.
+/// Validation keeps such rays from being made; this keeps a slip from being a panic.
+#[inline(always)]
+fn traceable(q: &RayQuery) -> bool {
+    q.ray.origin.is_finite() && q.ray.dir.is_finite()
+}
+
 /// The ray's constants for `WideNode::enter`, in every lane.
 struct WideRay {
     origin: [F32x4; 3],
@@ -254,7 +263,7 @@ impl Bvh {
         mut t_max: f32,
         mut hit: impl FnMut(u32, f32) -> Option<f32>,
     ) -> f32 {
-        if self.nodes.is_empty() {
+        if self.nodes.is_empty() || !traceable(q) {
             return t_max;
         }
         let ray = WideRay::new(q);
@@ -279,11 +288,6 @@ impl Bvh {
                 k += 1;
             }
             for &(t, lane) in &entered[..k] {
-                // Only a ray with a NaN in it enters an unused lane (every comparison with
-                // NaN keeps the interval open): it must not follow the lane's dummy index.
-                if n.child[lane] == NO_CHILD {
-                    continue;
-                }
                 stack.push(Pending {
                     t_enter: t,
                     child: n.child[lane],
@@ -315,7 +319,7 @@ impl Bvh {
     /// order, until `visit` returns false.
     #[inline]
     pub fn visit(&self, q: &RayQuery, t_max: f32, mut visit: impl FnMut(u32) -> bool) {
-        if self.nodes.is_empty() {
+        if self.nodes.is_empty() || !traceable(q) {
             return;
         }
         let ray = WideRay::new(q);
@@ -327,9 +331,6 @@ impl Bvh {
             while mask != 0 {
                 let lane = mask.trailing_zeros() as usize;
                 mask &= mask - 1;
-                if n.child[lane] == NO_CHILD {
-                    continue; // see `closest`
-                }
                 if n.count[lane] == 0 {
                     stack.push(n.child[lane]);
                 } else {
