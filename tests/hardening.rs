@@ -65,20 +65,7 @@ impl Dir {
     }
     /// `prism render SCENE -o out.png --quiet` at 40×30 plus `extra`.
     fn render(&self, scene: &Path, extra: &[&str]) -> Output {
-        let out = self.path("out.png");
-        let mut args = vec![
-            "render",
-            scene.to_str().unwrap(),
-            "-o",
-            out.to_str().unwrap(),
-            "--quiet",
-            "--width",
-            "40",
-            "--height",
-            "30",
-        ];
-        args.extend_from_slice(extra);
-        prism(&args)
+        render_to(scene, &self.path("out.png"), extra)
     }
     /// Asserts that rendering `text` fails with exit code 2 saying all of `needles`.
     fn refuses(&self, text: &str, extra: &[&str], needles: &[&str]) -> String {
@@ -94,6 +81,24 @@ impl Dir {
         assert!(!self.path("out.png").exists());
         e
     }
+}
+
+/// `prism render SCENE -o OUT --quiet` plus `extra`, at 40×30 unless `extra` sets a size.
+fn render_to(scene: &Path, out: &Path, extra: &[&str]) -> Output {
+    let mut args = vec![
+        "render",
+        scene.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--quiet",
+    ];
+    for (flag, value) in [("--width", "40"), ("--height", "30")] {
+        if !extra.contains(&flag) {
+            args.extend_from_slice(&[flag, value]);
+        }
+    }
+    args.extend_from_slice(extra);
+    prism(&args)
 }
 
 fn with(from: &str, to: &str) -> String {
@@ -411,19 +416,7 @@ fn devices_fifos_and_symlinks_are_written_through_not_replaced() {
     use std::os::unix::fs::FileTypeExt;
     let d = Dir::new();
     let scene = d.write("scene.toml", SPHERE);
-    let run = |out: &Path| {
-        prism(&[
-            "render",
-            scene.to_str().unwrap(),
-            "-o",
-            out.to_str().unwrap(),
-            "--quiet",
-            "--width",
-            "8",
-            "--height",
-            "6",
-        ])
-    };
+    let run = |out: &Path| render_to(&scene, out, &["--width", "8", "--height", "6"]);
     // A device: written, and still the device afterwards.
     let out = run(Path::new("/dev/null"));
     assert!(out.status.success(), "{}", stderr(&out));

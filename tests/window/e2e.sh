@@ -7,6 +7,8 @@
 # focus into the panel with Tab, and quits with Ctrl+Q. Leaves the viewer's log and the
 # images in WORK_DIR.
 set -euo pipefail
+# shellcheck source=lib.sh
+. "$(dirname "$0")/lib.sh"
 prism=$1
 work=$2
 log=$work/viewer.log
@@ -28,13 +30,7 @@ wait_for() {
     echo "timed out waiting for '$1' x$2:"; cat "$log"; exit 1
 }
 
-window=""
-for _ in $(seq 300); do
-    window=$(xdotool search --name '^prism$' 2>/dev/null | head -1 || true)
-    [ -n "$window" ] && break
-    sleep 0.1
-done
-[ -n "$window" ] || { echo "no window appeared:"; cat "$log"; exit 1; }
+find_window
 xdotool windowfocus --sync "$window"
 
 wait_for "converged" 1 120

@@ -3,6 +3,8 @@
 # the panel must say so, the window must stay usable, and the exit code must be 1.
 # Usage (inside xvfb-run): panic.sh PRISM_BINARY WORK_DIR
 set -euo pipefail
+# shellcheck source=lib.sh
+. "$(dirname "$0")/lib.sh"
 prism=$1
 work=$2
 log=$work/viewer.log
@@ -14,13 +16,7 @@ PRISM_INJECT_PANIC=1 "$prism" view --width 320 --height 240 >"$log" 2>&1 &
 pid=$!
 trap 'kill $pid 2>/dev/null || true' EXIT
 
-window=""
-for _ in $(seq 300); do
-    window=$(xdotool search --name '^prism$' 2>/dev/null | head -1 || true)
-    [ -n "$window" ] && break
-    sleep 0.1
-done
-[ -n "$window" ] || { echo "no window appeared:"; cat "$log"; exit 1; }
+find_window
 for _ in $(seq 300); do
     grep -q "the render failed" "$log" && break
     sleep 0.1

@@ -1,0 +1,11 @@
+# Shared by the window scripts: find_window sets $window to the viewer's X window (waiting up
+# to 30 s for it to appear), or prints the log and exits.
+find_window() {
+    window=""
+    for _ in $(seq 300); do
+        window=$(xdotool search --name '^prism$' 2>/dev/null | head -1 || true)
+        [ -n "$window" ] && return 0
+        sleep 0.1
+    done
+    echo "no window appeared:"; cat "$log"; exit 1
+}
