@@ -20,10 +20,6 @@ pub const TILE: u32 = 8;
 /// A tile covered by more boxes than this is left to the BVH.
 pub const MAX_CANDIDATES: usize = 12;
 
-/// How many tiles each primitive may be listed in on average, beyond what the tiles' own
-/// capacity (`MAX_CANDIDATES` each) allows, before every tile is left to the BVH.
-const LISTINGS_PER_PRIMITIVE: u64 = 64;
-
 /// Image positions are projected in f64 and each box's extent is widened by this many
 /// pixels, far more than the f32 rounding of a camera ray (about 10⁻⁶ of the field of
 /// view), so no subsample position in a pixel can reach a box that was not listed.
@@ -90,7 +86,7 @@ impl FirstHitTiles {
             .map(|&(x0, y0, x1, y1)| (x1 - x0 + 1) as u64 * (y1 - y0 + 1) as u64)
             .sum();
         let budget = (MAX_CANDIDATES * tile_count) as u64
-            + LISTINGS_PER_PRIMITIVE * scene.primitives.len() as u64;
+            + crate::limits::LISTINGS_PER_PRIMITIVE * scene.primitives.len() as u64;
         if listed > budget {
             return Self {
                 tiles_x,

@@ -107,10 +107,6 @@ impl Window {
     }
 }
 
-/// How many cells each primitive may be listed in on average, beyond what the cells' own
-/// capacity (`MAX_OCCLUDERS` each) allows, before the buffer gives every cell to the BVH.
-const LISTINGS_PER_PRIMITIVE: u64 = 64;
-
 /// A range that slice `get` refuses (it starts after it ends).
 const CROWDED: (u32, u32) = (1, 0);
 
@@ -171,8 +167,8 @@ impl LightBuffer {
                 )
             })
             .sum();
-        let budget =
-            (MAX_OCCLUDERS * cell_count) as u64 + LISTINGS_PER_PRIMITIVE * boxes.len() as u64;
+        let budget = (MAX_OCCLUDERS * cell_count) as u64
+            + crate::limits::LISTINGS_PER_PRIMITIVE * boxes.len() as u64;
         if listed > budget {
             return Self {
                 cells: vec![CROWDED; cell_count],

@@ -72,6 +72,12 @@ pub const RAY_BUDGET: u32 = 1024;
 /// recurses once per ray of its budget, and a level of it takes a few KiB.
 pub const RENDER_STACK_BYTES: usize = 32 << 20;
 
+/// How many lists (light-buffer cells, first-hit tiles) each primitive may appear in on
+/// average, beyond the lists' own capacity, before an accelerator gives up listing and
+/// leaves every ray to the BVH: crowds of overlapping primitives would otherwise cost time
+/// and memory that grow with their square.
+pub const LISTINGS_PER_PRIMITIVE: u64 = 64;
+
 /// The most anti-aliasing level (N × N subsamples per pixel).
 pub const MAX_AA: u32 = 8;
 

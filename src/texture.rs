@@ -14,9 +14,6 @@ pub struct ImageTexture {
     texels: Vec<u8>,
 }
 
-/// An image file's bytes, its format as guessed from them, and the size its header declares.
-type CheckedFile = (Vec<u8>, Option<image::ImageFormat>, (u32, u32));
-
 /// Why an image file cannot be a texture.
 #[derive(Debug, thiserror::Error)]
 pub enum TextureError {
@@ -43,60 +40,51 @@ pub enum TextureError {
 }
 
 impl ImageTexture {
-    /// The width and height an image file declares, read from its header alone, after
-    /// checking that it is a regular file of a size a texture may have.
+    /// The width and height an image file declares, read from its header alone (no more of
+    /// the file is read), after checking that it is a regular file of a size a texture may
+    /// have.
     pub fn probe(path: &Path) -> Result<(u32, u32), TextureError> {
-        Self::read_checked(path).map(|(_, _, size)| size)
-    }
-
-    /// The file's bytes, format and declared size, within the limits.
-    fn read_checked(path: &Path) -> Result<CheckedFile, TextureError> {
-        use crate::limits::{MAX_TEXTURE_FILE_BYTES, MAX_TEXTURE_TEXELS};
-        let io = |e: std::io::Error| TextureError::Io(crate::messages::io_message(&e));
-        let meta = std::fs::metadata(path).map_err(io)?;
-        if !meta.is_file() {
-            return Err(TextureError::NotAFile);
-        }
-        if meta.len() > MAX_TEXTURE_FILE_BYTES {
-            return Err(TextureError::FileTooLarge { bytes: meta.len() });
-        }
-        let bytes = std::fs::read(path).map_err(io)?;
-        let reader = image::ImageReader::new(std::io::Cursor::new(&bytes[..]))
-            .with_guessed_format()
-            .map_err(io)?;
-        let format = reader.format();
+        check_file(path)?;
+        let reader = image::ImageReader::open(path)
+            .and_then(|r| r.with_guessed_format())
+            .map_err(io_error)?;
         let (width, height) = reader
             .into_dimensions()
             .map_err(|e| TextureError::Decode(e.to_string()))?;
-        if width == 0 || height == 0 {
-            return Err(TextureError::Empty { width, height });
-        }
-        if width as u64 * height as u64 > MAX_TEXTURE_TEXELS {
-            return Err(TextureError::TooManyTexels { width, height });
-        }
-        Ok((bytes, format, (width, height)))
+        check_size(width, height)?;
+        Ok((width, height))
     }
 
     /// Reads an image file, refusing anything but a regular file within the limits: the
     /// size is read from the header before any texel is decoded.
     pub fn load(path: &Path) -> Result<Self, TextureError> {
         use crate::limits::MAX_TEXTURE_TEXELS;
-        let (bytes, format, (width, height)) = Self::read_checked(path)?;
+        check_file(path)?;
+        let bytes = std::fs::read(path).map_err(io_error)?;
+        let reader = || {
+            image::ImageReader::new(std::io::Cursor::new(&bytes[..]))
+                .with_guessed_format()
+                .map_err(io_error)
+        };
+        let header = reader()?;
+        let format = header.format();
+        let (width, height) = header
+            .into_dimensions()
+            .map_err(|e| TextureError::Decode(e.to_string()))?;
+        check_size(width, height)?;
         // JPEG decoders fill a truncated stream with grey rather than fail; a complete
         // stream ends with the end-of-image marker (trailing padding aside).
         if format == Some(image::ImageFormat::Jpeg) && !ends_with_jpeg_eoi(&bytes) {
             return Err(TextureError::Truncated);
         }
-        let mut reader = image::ImageReader::new(std::io::Cursor::new(&bytes[..]))
-            .with_guessed_format()
-            .map_err(|e| TextureError::Io(crate::messages::io_message(&e)))?;
+        let mut decoder = reader()?;
         let mut limits = image::Limits::default();
         limits.max_image_width = Some(width);
         limits.max_image_height = Some(height);
         // The decoded image in its widest form (16-bit RGBA), and the RGB copy made from it.
         limits.max_alloc = Some(MAX_TEXTURE_TEXELS * 8 + MAX_TEXTURE_TEXELS * 3);
-        reader.limits(limits);
-        let img = reader
+        decoder.limits(limits);
+        let img = decoder
             .decode()
             .map_err(|e| TextureError::Decode(e.to_string()))?;
         drop(bytes);
@@ -158,6 +146,34 @@ impl ImageTexture {
         }
         (sum / (255.0 * self.texel_count().max(1) as f64)).as_vec3()
     }
+}
+
+fn io_error(e: std::io::Error) -> TextureError {
+    TextureError::Io(crate::messages::io_message(&e))
+}
+
+/// That `path` is a regular file (a FIFO would block, a device might never end) of a size
+/// a texture may have.
+fn check_file(path: &Path) -> Result<(), TextureError> {
+    let meta = std::fs::metadata(path).map_err(io_error)?;
+    if !meta.is_file() {
+        return Err(TextureError::NotAFile);
+    }
+    if meta.len() > crate::limits::MAX_TEXTURE_FILE_BYTES {
+        return Err(TextureError::FileTooLarge { bytes: meta.len() });
+    }
+    Ok(())
+}
+
+/// That a declared image size is one a texture may have.
+fn check_size(width: u32, height: u32) -> Result<(), TextureError> {
+    if width == 0 || height == 0 {
+        return Err(TextureError::Empty { width, height });
+    }
+    if width as u64 * height as u64 > crate::limits::MAX_TEXTURE_TEXELS {
+        return Err(TextureError::TooManyTexels { width, height });
+    }
+    Ok(())
 }
 
 /// Whether JPEG data ends with the end-of-image marker, allowing for zero or 0xFF padding

@@ -184,6 +184,16 @@ fn max_depth_beyond_the_limit_is_refused_on_the_command_line_too() {
     assert_eq!(d.others(&["scene.toml"]), Vec::<String>::new());
 }
 
+/// The six faces of the closed box from −2 to 2 on every axis, as `vertices` values.
+const BOX_FACES: [&str; 6] = [
+    "[[-2,-2,-2],[2,-2,-2],[2,2,-2],[-2,2,-2]]",
+    "[[-2,-2,2],[-2,2,2],[2,2,2],[2,-2,2]]",
+    "[[-2,-2,-2],[-2,2,-2],[-2,2,2],[-2,-2,2]]",
+    "[[2,-2,-2],[2,-2,2],[2,2,2],[2,2,-2]]",
+    "[[-2,-2,-2],[-2,-2,2],[2,-2,2],[2,-2,-2]]",
+    "[[-2,2,-2],[2,2,-2],[2,2,2],[-2,2,2]]",
+];
+
 /// A closed box of mirrors, with a clear pane inside that every path crosses again and
 /// again: the deepest recursion a sample can have.
 fn mirror_box(max_depth: u32) -> String {
@@ -193,15 +203,7 @@ fn mirror_box(max_depth: u32) -> String {
          [materials.mirror]\nreflectivity = 1\n[materials.both]\nreflectivity = 0.5\n\
          transparency = 0.5\neta = 1.5\n[materials.clear]\ntransparency = 1\n"
     );
-    let faces = [
-        "[[-2,-2,-2],[2,-2,-2],[2,2,-2],[-2,2,-2]]",
-        "[[-2,-2,2],[-2,2,2],[2,2,2],[2,-2,2]]",
-        "[[-2,-2,-2],[-2,2,-2],[-2,2,2],[-2,-2,2]]",
-        "[[2,-2,-2],[2,-2,2],[2,2,2],[2,2,-2]]",
-        "[[-2,-2,-2],[-2,-2,2],[2,-2,2],[2,-2,-2]]",
-        "[[-2,2,-2],[2,2,-2],[2,2,2],[-2,2,2]]",
-    ];
-    for (i, f) in faces.iter().enumerate() {
+    for (i, f) in BOX_FACES.iter().enumerate() {
         let m = if i % 2 == 0 { "mirror" } else { "both" };
         s += &format!("[[polygons]]\nvertices = {f}\nmaterial = \"{m}\"\n");
     }
@@ -727,15 +729,7 @@ fn mirror_chain() -> String {
          [render]\nmax_depth = 64\n[[lights]]\nposition = [0.5, 0.5, 0.5]\n\
          [materials.mirror]\nreflectivity = 1\n[materials.clear]\ntransparency = 1\n",
     );
-    let faces = [
-        "[[-2,-2,-2],[2,-2,-2],[2,2,-2],[-2,2,-2]]",
-        "[[-2,-2,2],[-2,2,2],[2,2,2],[2,-2,2]]",
-        "[[-2,-2,-2],[-2,2,-2],[-2,2,2],[-2,-2,2]]",
-        "[[2,-2,-2],[2,-2,2],[2,2,2],[2,2,-2]]",
-        "[[-2,-2,-2],[-2,-2,2],[2,-2,2],[2,-2,-2]]",
-        "[[-2,2,-2],[2,2,-2],[2,2,2],[-2,2,2]]",
-    ];
-    for f in faces {
+    for f in BOX_FACES {
         s += &format!("[[polygons]]\nvertices = {f}\nmaterial = \"mirror\"\n");
     }
     for k in 0..20 {

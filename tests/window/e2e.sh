@@ -7,14 +7,12 @@
 # focus into the panel with Tab, and quits with Ctrl+Q. Leaves the viewer's log and the
 # images in WORK_DIR.
 set -euo pipefail
-# shellcheck source=lib.sh
-. "$(dirname "$0")/lib.sh"
 prism=$1
 work=$2
 log=$work/viewer.log
-export XDG_RUNTIME_DIR=$work/xdg
-mkdir -p "$XDG_RUNTIME_DIR" "$work/shots"
-chmod 700 "$XDG_RUNTIME_DIR"
+# shellcheck source=lib.sh
+. "$(dirname "$0")/lib.sh"
+mkdir -p "$work/shots"
 
 "$prism" view --width 320 --height 240 --aa 2 --screenshot-dir "$work/shots" >"$log" 2>&1 &
 pid=$!

@@ -3,14 +3,11 @@
 # the panel must say so, the window must stay usable, and the exit code must be 1.
 # Usage (inside xvfb-run): panic.sh PRISM_BINARY WORK_DIR
 set -euo pipefail
-# shellcheck source=lib.sh
-. "$(dirname "$0")/lib.sh"
 prism=$1
 work=$2
 log=$work/viewer.log
-export XDG_RUNTIME_DIR=$work/xdg
-mkdir -p "$XDG_RUNTIME_DIR"
-chmod 700 "$XDG_RUNTIME_DIR"
+# shellcheck source=lib.sh
+. "$(dirname "$0")/lib.sh"
 
 PRISM_INJECT_PANIC=1 "$prism" view --width 320 --height 240 >"$log" 2>&1 &
 pid=$!
