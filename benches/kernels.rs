@@ -4,10 +4,10 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use glam::Vec3;
-use prism::first_hit::FirstHitTiles;
-use prism::geometry::{Aabb, Bvh, Cylinder, Ray, RayQuery, Sphere, Triangle};
+use prism::accel::{AccelOptions, Accelerator, Primitive, Reach};
+use prism::geometry::{Cylinder, Ray, RayQuery, Shape, Sphere, Triangle};
 use prism::integrator::Integrator;
-use prism::scene::{PreparedScene, load_scene};
+use prism::scene::PreparedScene;
 use std::hint::black_box;
 
 fn shapes(c: &mut Criterion) {
@@ -39,60 +39,68 @@ fn shapes(c: &mut Criterion) {
 }
 
 fn bvh(c: &mut Criterion) {
-    let spheres: Vec<Sphere> = (0..10_000)
+    let spheres: Vec<Primitive> = (0..10_000)
         .map(|i| {
             let (x, y) = ((i % 100) as f32 * 3.0, (i / 100) as f32 * 3.0);
-            Sphere::new(Vec3::new(x, y, -50.0), 1.0)
+            Primitive {
+                shape: Shape::Sphere(Sphere::new(Vec3::new(x, y, -50.0), 1.0)),
+                object: i,
+            }
         })
         .collect();
-    let bounds: Vec<Aabb> = spheres.iter().map(|s| s.bounds()).collect();
-    let (tree, order) = Bvh::build(&bounds);
-    let stored: Vec<Sphere> = order.iter().map(|&i| spheres[i as usize]).collect();
+    // The BVH alone: no lights, no isolated solids.
+    let options = AccelOptions {
+        isolated_solids: false,
+        ..AccelOptions::ALL
+    };
+    let n = spheres.len();
+    let tree = Accelerator::build(spheres.clone(), n, &[], options);
     let q = RayQuery::new(Ray::new(
         Vec3::new(150.0, 150.0, 0.0),
         Vec3::new(0.1, 0.05, -1.0),
     ));
     c.bench_function("BVH closest hit, 10k spheres", |b| {
-        b.iter(|| {
-            tree.closest(black_box(&q), f32::INFINITY, |i, t| {
-                stored[i as usize].intersect(&q.ray, t)
-            })
-        })
+        b.iter(|| tree.nearest_hit(black_box(&q), Reach::After(0.0)))
     });
     c.bench_function("BVH build, 10k spheres", |b| {
-        b.iter(|| Bvh::build(black_box(&bounds)))
+        b.iter(|| Accelerator::build(black_box(spheres.clone()), n, &[], options))
     });
 }
 
 fn whitted_path(c: &mut Criterion) {
-    let scene = load_scene(&prism::seed_scene_path()).unwrap();
+    let scene = prism::seed::scene().unwrap();
     let prepared = PreparedScene::new(&scene);
     let rays = scene.camera.rays(800, 600);
     // Through the 1.43 glass sphere: refraction, reflection and shadows.
     let ray = rays.ray(610.0, 500.0);
     c.bench_function("seed scene, one path through the glass", |b| {
-        b.iter(|| Integrator::new(&prepared, 1.0 / 512.0).trace_primary(black_box(ray)))
+        b.iter(|| {
+            Integrator::new(&prepared, 1.0 / 512.0)
+                .trace_primary(Reach::After(0.0), || black_box(ray))
+        })
     });
 }
 
 fn first_hit(c: &mut Criterion) {
-    let scene = load_scene(&prism::seed_scene_path()).unwrap();
+    let scene = prism::seed::scene().unwrap();
     let prepared = PreparedScene::new(&scene);
     let rays = scene.camera.rays(800, 600);
-    let tiles = FirstHitTiles::new(&prepared, &rays, 800, 600);
+    let accel = prepared.geometry.accel();
+    let view = accel.camera_view(&rays, 800, 600);
     // A floor pixel between the objects, and a sky pixel above them.
     for (name, x, y) in [("floor", 400, 560), ("sky", 400, 20)] {
         let q = RayQuery::new(rays.ray(x as f32 + 0.5, y as f32 + 0.5));
-        let candidates = tiles.at(x, y).unwrap();
+        let reach = view.reach(x, y);
+        assert!(matches!(reach, Reach::Among(_)));
         c.bench_function(&format!("primary ray, {name} pixel: BVH"), |b| {
-            b.iter(|| prepared.intersect(black_box(&q), 0.0, f32::INFINITY))
+            b.iter(|| accel.nearest_hit(black_box(&q), Reach::After(0.0)))
         });
         c.bench_function(&format!("primary ray, {name} pixel: first-hit tile"), |b| {
-            b.iter(|| prepared.intersect_among(black_box(&q), black_box(candidates)))
+            b.iter(|| accel.nearest_hit(black_box(&q), black_box(reach)))
         });
     }
     c.bench_function("first-hit tiles build, seed scene, 800x600", |b| {
-        b.iter(|| FirstHitTiles::new(&prepared, black_box(&rays), 800, 600))
+        b.iter(|| accel.camera_view(black_box(&rays), 800, 600))
     });
 }
 

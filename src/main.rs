@@ -3,6 +3,7 @@
 
 mod bench;
 mod cli;
+mod fault_injection;
 #[cfg(feature = "viewer")]
 mod viewer;
 

@@ -1,12 +1,12 @@
 //! Every shortcut the tracer takes must leave the image as the unoptimised path draws it.
 
-use prism::geometry::Bvh;
+use prism::accel::AccelOptions;
 use prism::render::{self, RenderSettings};
-use prism::scene::{PreparedScene, Scene, load_scene};
+use prism::scene::{PreparedScene, Scene};
 use std::sync::Arc;
 
 fn seed() -> Scene {
-    load_scene(&prism::seed_scene_path()).unwrap()
+    prism::seed::scene().unwrap()
 }
 
 fn image(scene: Arc<PreparedScene>, camera: prism::camera::Camera, s: RenderSettings) -> Vec<u8> {
@@ -14,6 +14,13 @@ fn image(scene: Arc<PreparedScene>, camera: prism::camera::Camera, s: RenderSett
         .accumulator()
         .to_rgb8()
         .into_raw()
+}
+
+/// `scene` prepared with every shortcut but those `off` turns off.
+fn prepared(scene: &Scene, off: impl FnOnce(&mut AccelOptions)) -> Arc<PreparedScene> {
+    let mut options = AccelOptions::ALL;
+    off(&mut options);
+    Arc::new(PreparedScene::with_options(scene, options))
 }
 
 fn largest_difference(a: &[u8], b: &[u8]) -> u8 {
@@ -44,14 +51,13 @@ fn opaque_scenes_take_the_any_hit_shadow_shortcut_unchanged() {
     for o in &mut scene.objects {
         o.material.transparency = 0.0;
     }
-    let shortcut = PreparedScene::new(&scene);
-    assert!(!shortcut.any_transmission);
-    let mut general = shortcut.clone();
-    general.any_transmission = true;
+    let shortcut = prepared(&scene, |_| {});
+    assert!(!shortcut.appearance.shadow_filters().any_transmission());
+    let general = prepared(&scene, |o| o.any_hit_shadows = false);
     let s = RenderSettings::new(200, 150, 1);
     assert_eq!(
-        image(Arc::new(shortcut), scene.camera, s),
-        image(Arc::new(general), scene.camera, s)
+        image(shortcut, scene.camera, s),
+        image(general, scene.camera, s)
     );
 }
 
@@ -59,15 +65,12 @@ fn opaque_scenes_take_the_any_hit_shadow_shortcut_unchanged() {
 fn the_bvh_answers_as_a_flat_list_would() {
     // A one-leaf hierarchy (every primitive in the root) is the unoptimised list.
     let scene = seed();
-    let tree = PreparedScene::new(&scene);
-    let mut flat = tree.clone();
-    flat.bvh = Bvh::single_leaf(tree.bvh.bounds.unwrap(), tree.primitives.len() as u32);
-    assert!(tree.bvh.nodes.len() > 1);
+    let tree = prepared(&scene, |_| {});
+    let flat = prepared(&scene, |o| o.bvh = false);
+    assert!(tree.geometry.accel().bvh_nodes() > 1);
+    assert_eq!(flat.geometry.accel().bvh_nodes(), 1);
     let s = RenderSettings::new(200, 150, 1);
-    assert_eq!(
-        image(Arc::new(tree), scene.camera, s),
-        image(Arc::new(flat), scene.camera, s)
-    );
+    assert_eq!(image(tree, scene.camera, s), image(flat, scene.camera, s));
 }
 
 #[test]
@@ -76,7 +79,8 @@ fn first_hit_tiles_draw_the_image_the_bvh_draws() {
     // what a traversal of the BVH sees, from the seed camera and from one among the
     // objects whose boxes straddle the eye's plane.
     let scene = seed();
-    let prepared = Arc::new(PreparedScene::new(&scene));
+    let tiles = prepared(&scene, |_| {});
+    let traversal = prepared(&scene, |o| o.first_hit_tiles = false);
     let low = prism::camera::Camera::looking_along(
         glam::Vec3::new(3.0, -13.0, -50.0),
         glam::Vec3::new(-0.3, -0.05, -1.0),
@@ -84,15 +88,13 @@ fn first_hit_tiles_draw_the_image_the_bvh_draws() {
     )
     .unwrap();
     for camera in [scene.camera, low] {
-        let tiles = RenderSettings::new(203, 150, 2);
-        assert!(tiles.first_hit_tiles);
-        let traversal = RenderSettings {
-            first_hit_tiles: false,
-            ..tiles
-        };
+        let s = RenderSettings::new(203, 150, 2);
+        let rays = camera.rays(s.width, s.height);
+        let view = |p: &PreparedScene| p.geometry.accel().camera_view(&rays, s.width, s.height);
+        assert!(view(&tiles).tiles().is_some() && view(&traversal).tiles().is_none());
         assert_eq!(
-            image(prepared.clone(), camera, tiles),
-            image(prepared.clone(), camera, traversal)
+            image(tiles.clone(), camera, s),
+            image(traversal.clone(), camera, s)
         );
     }
 }
@@ -105,11 +107,11 @@ fn light_buffers_draw_the_image_the_bvh_draws() {
     // with a cloud of glass beads over the scene that crowds cells past the list limit
     // and tints shadows through several surfaces.
     use glam::Vec3;
-    use prism::light::PointLight;
-    use prism::light_buffer::MAX_OCCLUDERS;
-    use prism::material::Material;
+    use prism::accel::MAX_OCCLUDERS;
+    use prism::appearance::Material;
+    use prism::appearance::PointLight;
+    use prism::appearance::Texture;
     use prism::scene::{SceneObject, ShapeDesc};
-    use prism::texture::Texture;
 
     let seed = seed();
     let mut among = seed.clone();
@@ -138,8 +140,10 @@ fn light_buffers_draw_the_image_the_bvh_draws() {
         });
     }
     for (name, scene) in [("seed", seed), ("among", among), ("beads", beads)] {
-        let prepared = PreparedScene::new(&scene);
-        let census = prepared.light_buffers[0].census();
+        let lists = prepared(&scene, |_| {});
+        let traversal = prepared(&scene, |o| o.light_buffers = false);
+        let census = lists.geometry.accel().light_buffer(0).unwrap().census();
+        assert!(traversal.geometry.accel().light_buffer(0).is_none());
         assert!(census.empty > 0, "{name}: {census:?}");
         if name == "beads" {
             assert!(
@@ -147,16 +151,10 @@ fn light_buffers_draw_the_image_the_bvh_draws() {
                 "more than {MAX_OCCLUDERS} beads share a cell"
             );
         }
-        let prepared = Arc::new(prepared);
-        let lists = RenderSettings::new(200, 150, 1);
-        assert!(lists.light_buffer);
-        let traversal = RenderSettings {
-            light_buffer: false,
-            ..lists
-        };
+        let s = RenderSettings::new(200, 150, 1);
         assert_eq!(
-            image(prepared.clone(), scene.camera, lists),
-            image(prepared, scene.camera, traversal),
+            image(lists, scene.camera, s),
+            image(traversal, scene.camera, s),
             "{name}"
         );
     }
@@ -170,9 +168,9 @@ fn rays_inside_isolated_solids_find_what_the_bvh_finds() {
     // cylinder lifted off the floor (isolated, refracting through its side and caps) and a
     // bead inside the clear green sphere (so neither of those two is isolated).
     use glam::Vec3;
-    use prism::material::Material;
+    use prism::appearance::Material;
+    use prism::appearance::Texture;
     use prism::scene::{SceneObject, ShapeDesc};
-    use prism::texture::Texture;
 
     let seed = seed();
     let mut variant = seed.clone();
@@ -195,24 +193,22 @@ fn rays_inside_isolated_solids_find_what_the_bvh_finds() {
         },
     });
     let isolated = |prepared: &PreparedScene, name: &str| {
-        let object = prepared.objects.iter().find(|o| o.name == name).unwrap();
-        object.isolated_solid.is_some()
+        let object = prepared.geometry.find(name).unwrap();
+        prepared.geometry.accel().isolated_solid(object).is_some()
     };
     for (name, scene) in [("seed", seed), ("variant", variant)] {
-        let fast = PreparedScene::new(&scene);
+        let fast = prepared(&scene, |_| {});
         let seed = name == "seed";
         assert!(isolated(&fast, "mirror sphere") && isolated(&fast, "glass sphere (eta 1.43)"));
         assert_eq!(isolated(&fast, "green sphere"), seed, "{name}");
         assert_eq!(isolated(&fast, "striped cylinder"), !seed, "{name}");
         assert!(!isolated(&fast, "floor") && !isolated(&fast, "tetrahedron"));
-        let mut slow = fast.clone();
-        for object in &mut slow.objects {
-            object.isolated_solid = None;
-        }
+        let slow = prepared(&scene, |o| o.isolated_solids = false);
+        assert!(!isolated(&slow, "mirror sphere"));
         let s = RenderSettings::new(200, 150, 2);
         assert_eq!(
-            image(Arc::new(fast), scene.camera, s),
-            image(Arc::new(slow), scene.camera, s),
+            image(fast, scene.camera, s),
+            image(slow, scene.camera, s),
             "{name}"
         );
     }

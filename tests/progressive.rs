@@ -2,12 +2,12 @@
 //! any moment, converging to exactly the one-shot render.
 
 use prism::render::{self, AdaptiveSettings, PassOutcome, ProgressiveRender, RenderSettings};
-use prism::scene::{PreparedScene, load_scene};
+use prism::scene::PreparedScene;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 fn seed() -> (Arc<PreparedScene>, prism::camera::Camera) {
-    let scene = load_scene(&prism::seed_scene_path()).unwrap();
+    let scene = prism::seed::scene().unwrap();
     (Arc::new(PreparedScene::new(&scene)), scene.camera)
 }
 
@@ -167,4 +167,42 @@ fn adaptive_sampling_stops_flat_pixels_and_refines_edges() {
         .sum::<f64>()
         / a.as_raw().len() as f64;
     assert!(mean_error < 1.0, "mean error {mean_error} levels");
+}
+
+#[test]
+fn an_appearance_edit_keeps_the_geometry_and_draws_what_a_fresh_preparation_draws() {
+    // A viewer slider: the glass sphere's eta and the mirror sphere's transparency change
+    // in a running render. The geometry (shapes, BVH, light buffers) is the very same
+    // object afterwards, and the image equals that of the edited scene prepared anew.
+    let mut scene = prism::seed::scene().unwrap();
+    let settings = RenderSettings::new(80, 60, 2);
+    let mut job =
+        ProgressiveRender::new(Arc::new(PreparedScene::new(&scene)), scene.camera, settings);
+    job.step(&NEVER);
+    let geometry = job.scene().geometry.clone();
+    let glass = geometry.find("glass sphere (eta 1.43)").unwrap() as usize;
+    let mirror = geometry.find("mirror sphere").unwrap() as usize;
+    scene.set_eta(glass, 1.9).unwrap();
+    scene.set_transparency(mirror, 0.4).unwrap();
+    for object in [glass, mirror] {
+        let material = scene.objects[object].material.clone();
+        job.edit_appearance(|a| a.set_material(object, material));
+    }
+    assert_eq!(job.passes_done(), 0, "an edit restarts the accumulation");
+    assert!(Arc::ptr_eq(&job.scene().geometry, &geometry));
+    while let PassOutcome::Finished(_) = job.step(&NEVER) {}
+    let fresh = render::render(
+        Arc::new(PreparedScene::new(&scene)),
+        scene.camera,
+        settings,
+        |_, _| {},
+    );
+    assert_eq!(job.accumulator(), fresh.accumulator());
+    let unedited = render::render(
+        Arc::new(PreparedScene::new(&prism::seed::scene().unwrap())),
+        scene.camera,
+        settings,
+        |_, _| {},
+    );
+    assert_ne!(job.accumulator(), unedited.accumulator(), "the edit shows");
 }

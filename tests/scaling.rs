@@ -3,7 +3,6 @@
 //! light buffer listed every sphere in every cell it covered). A counting allocator
 //! measures the peak, so the bound is on bytes, not on time.
 
-use prism::first_hit::FirstHitTiles;
 use prism::scene::{PreparedScene, parse_scene};
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::path::Path;
@@ -45,11 +44,12 @@ fn peak_bytes(n: usize) -> usize {
     let before = IN_USE.load(Ordering::Relaxed);
     PEAK.store(before, Ordering::Relaxed);
     let prepared = PreparedScene::new(&scene);
-    assert!(prepared.objects.iter().all(|o| o.isolated_solid.is_none()));
+    let accel = prepared.geometry.accel();
+    assert!((0..n as u32).all(|o| accel.isolated_solid(o).is_none()));
     // The first-hit tiles of a 640×480 view, in which the spheres cover many tiles.
     let (w, h) = (640, 480);
-    let tiles = FirstHitTiles::new(&prepared, &scene.camera.rays(w, h), w, h);
-    assert!(tiles.census().crowded > 0);
+    let view = accel.camera_view(&scene.camera.rays(w, h), w, h);
+    assert!(view.tiles().unwrap().census().crowded > 0);
     PEAK.load(Ordering::Relaxed) - before
 }
 

@@ -1,15 +1,16 @@
 //! The seed scene, rendered headless: the properties a person checks by eye, as numbers.
 
 use glam::Vec3;
+use prism::accel::Reach;
 use prism::camera::Camera;
 use prism::geometry::Ray;
 use prism::integrator::Integrator;
 use prism::render::{self, RenderSettings};
-use prism::scene::{PreparedScene, Scene, ShapeDesc, load_scene};
+use prism::scene::{PreparedScene, Scene, ShapeDesc};
 use std::sync::Arc;
 
 fn seed() -> Scene {
-    load_scene(&prism::seed_scene_path()).expect("the seed scene loads")
+    prism::seed::scene().expect("the seed scene loads")
 }
 
 fn object_mut<'a>(scene: &'a mut Scene, name: &str) -> &'a mut prism::scene::SceneObject {
@@ -26,7 +27,9 @@ fn look_from(scene: &Scene, eye: Vec3, target: Vec3) -> Vec3 {
     let prepared = PreparedScene::new(scene);
     let mut integrator = Integrator::new(&prepared, 0.0);
     integrator
-        .trace_primary(Ray::new(eye, (target - eye).normalize()))
+        .trace_primary(Reach::After(0.0), || {
+            Ray::new(eye, (target - eye).normalize())
+        })
         .color
 }
 
@@ -101,7 +104,8 @@ fn earth_centre_carries_the_texture_colour_lit_by_phong() {
     let hit = scene.camera.eye + dir * ((center - scene.camera.eye).length() - radius);
     let n = (hit - center).normalize();
     let (u, v) = prism::geometry::Sphere::uv(n.into());
-    let prism::texture::Texture::Image(image) = &object_mut(&mut scene, "earth").material.texture
+    let prism::appearance::Texture::Image(image) =
+        &object_mut(&mut scene, "earth").material.texture
     else {
         panic!("the earth is image textured");
     };

@@ -4,9 +4,9 @@
 //! --nocapture` shows them).
 
 use glam::{DVec3, Vec3};
+use prism::appearance::Material;
 use prism::geometry::{Cylinder, Ray, RayQuery, Sphere, Triangle};
 use prism::integrator::{Integrator, SelfIntersection};
-use prism::material::Material;
 use prism::render::compare::fraction_differing as differing;
 use prism::render::{self, RenderSettings};
 use prism::scene::{PreparedScene, Scene, SceneObject, ShapeDesc, load_scene};
@@ -15,7 +15,7 @@ use std::path::Path;
 use std::sync::Arc;
 
 fn seed() -> Scene {
-    load_scene(&prism::seed_scene_path()).unwrap()
+    prism::seed::scene().unwrap()
 }
 
 const W: u32 = 240;
@@ -56,7 +56,7 @@ fn seed_scene_renders_the_same_at_every_scale() {
 /// The seed scene file with every position moved by `offset`, written next to a copy of
 /// its texture; parsed as a user's file would be.
 fn translated_seed_file(dir: &Path, offset: DVec3) -> std::path::PathBuf {
-    let text = std::fs::read_to_string(prism::seed_scene_path()).unwrap();
+    let text = prism::seed::SCENE_TOML.to_string();
     let mut doc: toml::Table = text.parse().unwrap();
     let shift = |v: &mut toml::Value| {
         let a = v.as_array_mut().unwrap();
@@ -490,7 +490,9 @@ proptest! {
         let scene = seed_prepared();
         let mut integrator = Integrator::new(scene, 0.0);
         let c = integrator
-            .trace_primary(Ray::new(Vec3::new(eye.0, eye.1, eye.2), dir))
+            .trace_primary(prism::accel::Reach::After(0.0), || {
+                Ray::new(Vec3::new(eye.0, eye.1, eye.2), dir)
+            })
             .color;
         prop_assert!(c.is_finite(), "{c}");
     }

@@ -20,8 +20,9 @@ pub enum BenchKind {
         /// A small image and few runs: proves the bench works in well under a minute.
         #[arg(long)]
         quick: bool,
-        /// Where the CSV, the plot and the table go (default: docs/benchmarks, or
-        /// target/prism-bench/quick with --quick).
+        /// Where the CSV, the plot and the table go (default: prism-bench/convergence in
+        /// the working directory, or prism-bench/quick with --quick; the figures in the
+        /// docs come from `--out docs/benchmarks`).
         #[arg(long)]
         out: Option<std::path::PathBuf>,
         /// Timed runs per figure (the median is reported).
@@ -65,13 +66,12 @@ fn run_in_pool(args: BenchArgs) -> Result<()> {
             edge_samples,
             edge_contrast,
         } => {
-            let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
             let out_dir = out.unwrap_or_else(|| {
-                if quick {
-                    root.join("target/prism-bench/quick")
+                std::path::Path::new("prism-bench").join(if quick {
+                    "quick"
                 } else {
-                    root.join("docs/benchmarks")
-                }
+                    "convergence"
+                })
             });
             convergence::run(convergence::Config {
                 quick,

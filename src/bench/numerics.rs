@@ -6,7 +6,7 @@ use prism::geometry::{Ray, Sphere};
 use prism::integrator::SelfIntersection;
 use prism::render::compare::fraction_differing;
 use prism::render::{self, RenderSettings};
-use prism::scene::{PreparedScene, Scene, load_scene};
+use prism::scene::{PreparedScene, Scene};
 use std::fmt::Write;
 use std::sync::Arc;
 use std::time::Instant;
@@ -140,7 +140,7 @@ pub fn cost_table(seed: &Scene, runs: usize) -> String {
 }
 
 pub fn run(runs: usize) -> Result<()> {
-    let seed = load_scene(&prism::seed_scene_path())?;
+    let seed = prism::seed::scene()?;
     println!(
         "## Ray–sphere roots: textbook against stable\n\n{}",
         quadratic_table()

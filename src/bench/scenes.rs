@@ -1,11 +1,11 @@
 //! Scenes made for measuring: many spheres, for the cost against object count.
 
 use glam::{DVec3, Vec3};
+use prism::appearance::Material;
+use prism::appearance::PointLight;
+use prism::appearance::Texture;
 use prism::camera::Camera;
-use prism::light::PointLight;
-use prism::material::Material;
 use prism::scene::{RenderDefaults, Scene, SceneObject, ShapeDesc};
-use prism::texture::Texture;
 
 /// `n` spheres of radius 1 scattered over a square field above a floor, the field growing
 /// with √n so their density stays the same, seen from above at an angle that keeps the

@@ -4,8 +4,8 @@ mod render;
 
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
-use prism::render::{OutputError, SettingsError};
-use prism::scene::SceneError;
+use prism::render::{OutputError, RenderSettings, SettingsError};
+use prism::scene::{Scene, SceneError};
 use std::path::PathBuf;
 
 #[derive(Parser, Debug)]
@@ -84,7 +84,14 @@ fn exit_on_signals() -> Result<()> {
 
 #[cfg(feature = "viewer")]
 fn view(args: ViewArgs) -> Result<()> {
-    crate::viewer::run(args)
+    // Everything that can be wrong with the input is reported before a window opens.
+    let scene = load_scene_or_seed(args.scene.as_deref())?;
+    let settings = RenderSettings::for_scene(&scene.render, args.width, args.height, args.aa)?;
+    crate::viewer::run(crate::viewer::Launch {
+        scene,
+        settings,
+        screenshot_dir: args.screenshot_dir.unwrap_or_else(|| PathBuf::from(".")),
+    })
 }
 
 #[cfg(not(feature = "viewer"))]
@@ -92,17 +99,12 @@ fn view(_: ViewArgs) -> Result<()> {
     anyhow::bail!("this prism was built without the viewer feature; use `prism render`")
 }
 
-/// Panics when `PRISM_INJECT_PANIC` is set: the tests' way to check that a panic in a
-/// render thread is reported (exit code 1, or a message in the viewer), not swallowed.
-pub fn injected_panic() {
-    if std::env::var_os("PRISM_INJECT_PANIC").is_some() {
-        panic!("PRISM_INJECT_PANIC is set: a deliberate panic, to test how one is reported");
+/// The scene file at `path`, or the built-in seed scene.
+pub fn load_scene_or_seed(path: Option<&std::path::Path>) -> Result<Scene, SceneError> {
+    match path {
+        Some(path) => prism::scene::load_scene(path),
+        None => prism::seed::scene(),
     }
-}
-
-/// The scene file to load: the one given, or the seed scene.
-pub fn scene_path(given: Option<PathBuf>) -> PathBuf {
-    given.unwrap_or_else(prism::seed_scene_path)
 }
 
 /// 2 for bad input (scene file, settings, output path), 1 for anything else.

@@ -5,7 +5,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use prism::render::output::ImageFormat;
 use prism::render::{AdaptiveSettings, PendingFile, RenderSettings};
 use prism::sampler::SampleLayout;
-use prism::scene::{PreparedScene, load_scene};
+use prism::scene::PreparedScene;
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;
@@ -60,16 +60,11 @@ pub enum Layout {
 }
 
 pub fn run(args: RenderArgs) -> Result<()> {
-    let scene_path = super::scene_path(args.scene);
-    let mut scene = load_scene(&scene_path)?;
+    let mut scene = super::load_scene_or_seed(args.scene.as_deref())?;
     if let Some(depth) = args.max_depth {
         scene.render.max_depth = depth;
     }
-    let mut settings = RenderSettings::new(
-        args.width.unwrap_or(scene.render.width),
-        args.height.unwrap_or(scene.render.height),
-        args.aa.unwrap_or(scene.render.aa),
-    );
+    let mut settings = RenderSettings::for_scene(&scene.render, args.width, args.height, args.aa)?;
     settings.layout = match args.layout {
         Layout::Stratified => SampleLayout::Stratified,
         Layout::Grid => SampleLayout::Grid,
@@ -104,7 +99,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
     );
     let start = Instant::now();
     let job = pool.install(|| {
-        rayon::join(super::injected_panic, || ());
+        rayon::join(crate::fault_injection::injected_panic, || ());
         prism::render::render(prepared, scene.camera, settings, |job, stats| {
             bar.set_position(job.passes_done() as u64);
             bar.set_message(format!(

@@ -1,8 +1,7 @@
-//! Rays, the shapes they hit, and the bounding volume hierarchy that finds the hits fast.
+//! Rays and the shapes they hit; finding which shape a ray hits is the acceleration
+//! layer's job (accel/).
 
 pub mod aabb;
-pub mod bvh;
-pub mod bvh_build;
 pub mod cylinder;
 pub mod ray;
 pub mod shape;
@@ -10,7 +9,6 @@ pub mod sphere;
 pub mod triangle;
 
 pub use aabb::Aabb;
-pub use bvh::Bvh;
 pub use cylinder::Cylinder;
 pub use ray::{Ray, RayQuery};
 pub use shape::{Shape, ShapeHit, SurfacePoint};

@@ -2,8 +2,8 @@
 
 use super::accumulator::Accumulator;
 use super::settings::RenderSettings;
+use crate::accel::CameraView;
 use crate::camera::CameraRays;
-use crate::first_hit::FirstHitTiles;
 use crate::integrator::{Integrator, RayCounts};
 use crate::sampler::Sampler;
 use crate::scene::PreparedScene;
@@ -13,10 +13,14 @@ use rayon::prelude::*;
 /// cancel request quickly, large enough to amortise the scheduling.
 pub const BAND_ROWS: usize = 4;
 
+/// What one pass did.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct PassStats {
+    /// Rays traced, by kind.
     pub rays: RayCounts,
+    /// Pixels that received a subsample.
     pub pixels_traced: u64,
+    /// Wall-clock time of the pass.
     pub seconds: f64,
 }
 
@@ -28,7 +32,7 @@ pub struct PassStats {
 pub fn render_pass(
     scene: &PreparedScene,
     rays: &CameraRays,
-    tiles: Option<&FirstHitTiles>,
+    view: &CameraView,
     sampler: &Sampler,
     pass: u32,
     settings: &RenderSettings,
@@ -48,8 +52,7 @@ pub fn render_pass(
                 return None;
             }
             let mut integrator = Integrator::new(scene, settings.min_weight)
-                .with_self_intersection(settings.self_intersection)
-                .with_light_buffer(settings.light_buffer);
+                .with_self_intersection(settings.self_intersection);
             let mut traced = 0u64;
             for (row, row_pixels) in pixels.chunks_mut(width).enumerate() {
                 let y = band_index * BAND_ROWS + row;
@@ -65,12 +68,7 @@ pub fn render_pass(
                         let (dx, dy) = subsamples.offset(x);
                         rays.ray(x as f32 + dx, y as f32 + dy)
                     };
-                    // An empty tile needs neither a subsample position nor a ray.
-                    let sample = match tiles.and_then(|t| t.at(x, y)) {
-                        Some([]) => integrator.trace_primary_miss(),
-                        Some(candidates) => integrator.trace_primary_among(ray(), candidates),
-                        None => integrator.trace_primary(ray()),
-                    };
+                    let sample = integrator.trace_primary(view.reach(x, y), ray);
                     sum.add(
                         sample.color.clamp(glam::Vec3::ZERO, glam::Vec3::ONE),
                         sample.signature,

@@ -4,8 +4,9 @@
 use super::accumulator::{Accumulator, PixelSum};
 use super::pass::{PassStats, render_pass};
 use super::settings::RenderSettings;
+use crate::accel::CameraView;
+use crate::appearance::Appearance;
 use crate::camera::{Camera, CameraRays};
-use crate::first_hit::FirstHitTiles;
 use crate::integrator::RayCounts;
 use crate::sampler::Sampler;
 use crate::scene::PreparedScene;
@@ -28,9 +29,9 @@ pub struct ProgressiveRender {
     settings: RenderSettings,
     sampler: Sampler,
     rays: CameraRays,
-    /// Built at the first pass after the camera or the scene changes (none when the
-    /// settings turn first-hit tiles off).
-    tiles: Option<FirstHitTiles>,
+    /// What primary rays can hit first, by pixel: built at the first pass after the camera
+    /// or the geometry changes.
+    view: Option<CameraView>,
     accumulator: Accumulator,
     /// Pixels still refining (all of them unless adaptive sampling has stopped some).
     active: Vec<bool>,
@@ -51,7 +52,7 @@ impl ProgressiveRender {
         Self {
             sampler: Sampler::new(settings.aa, settings.layout),
             rays: camera.rays(settings.width, settings.height),
-            tiles: None,
+            view: None,
             accumulator: Accumulator::new(settings.width, settings.height),
             active: vec![true; pixels],
             active_count: pixels,
@@ -76,16 +77,26 @@ impl ProgressiveRender {
         self.seconds = 0.0;
     }
 
+    /// A new scene; the camera view is kept when the geometry is the same.
     pub fn set_scene(&mut self, scene: Arc<PreparedScene>) {
+        if !Arc::ptr_eq(&scene.geometry, &self.scene.geometry) {
+            self.view = None;
+        }
         self.scene = scene;
-        self.tiles = None;
+        self.restart();
+    }
+
+    /// Changes the scene's appearance in place (a material, a light's colour): no
+    /// geometry is rebuilt, and the accumulation restarts.
+    pub fn edit_appearance(&mut self, edit: impl FnOnce(&mut Appearance)) {
+        edit(&mut Arc::make_mut(&mut self.scene).appearance);
         self.restart();
     }
 
     pub fn set_camera(&mut self, camera: Camera) {
         self.camera = camera;
         self.rays = camera.rays(self.settings.width, self.settings.height);
-        self.tiles = None;
+        self.view = None;
         self.restart();
     }
 
@@ -102,18 +113,19 @@ impl ProgressiveRender {
         if self.is_converged() {
             return PassOutcome::Converged;
         }
-        // The tiles' build time counts as part of the pass that needs them.
+        // The view's build time counts as part of the pass that needs it.
         let build_start = std::time::Instant::now();
-        if self.settings.first_hit_tiles && self.tiles.is_none() {
-            let (w, h) = (self.settings.width, self.settings.height);
-            self.tiles = Some(FirstHitTiles::new(&self.scene, &self.rays, w, h));
-        }
+        let (w, h) = (self.settings.width, self.settings.height);
+        let (scene, rays) = (&self.scene, &self.rays);
+        let view = self
+            .view
+            .get_or_insert_with(|| scene.geometry.accel().camera_view(rays, w, h));
         let build_seconds = build_start.elapsed().as_secs_f64();
         let active = self.settings.adaptive.map(|_| self.active.as_slice());
         let Some(mut stats) = render_pass(
             &self.scene,
             &self.rays,
-            self.tiles.as_ref(),
+            view,
             &self.sampler,
             self.passes_done,
             &self.settings,

@@ -17,13 +17,6 @@ pub struct RenderSettings {
     pub min_weight: f32,
     pub adaptive: Option<AdaptiveSettings>,
     pub self_intersection: SelfIntersection,
-    /// Primary rays look up what they can hit first by tile (first_hit.rs) instead of
-    /// traversing the BVH; off draws the same image the slow way, for comparison.
-    pub first_hit_tiles: bool,
-    /// Shadow rays look up what they may meet by their direction from the light
-    /// (light_buffer.rs) instead of traversing the BVH; off draws the same image the slow
-    /// way, for comparison.
-    pub light_buffer: bool,
 }
 
 /// Stop refining a pixel once its subsamples agree.
@@ -68,8 +61,6 @@ impl RenderSettings {
             min_weight: DEFAULT_MIN_WEIGHT,
             adaptive: None,
             self_intersection: SelfIntersection::ErrorBound,
-            first_hit_tiles: true,
-            light_buffer: true,
         }
     }
 
@@ -111,6 +102,25 @@ impl RenderSettings {
         Ok(())
     }
 
+    /// The settings of a render of `scene`: its image size and anti-aliasing level unless
+    /// `width`, `height` or `aa` override them (as the command line and the viewer's
+    /// options do), checked.
+    pub fn for_scene(
+        defaults: &crate::scene::RenderDefaults,
+        width: Option<u32>,
+        height: Option<u32>,
+        aa: Option<u32>,
+    ) -> Result<Self, SettingsError> {
+        let settings = Self::new(
+            width.unwrap_or(defaults.width),
+            height.unwrap_or(defaults.height),
+            aa.unwrap_or(defaults.aa),
+        );
+        settings.validate()?;
+        Ok(settings)
+    }
+
+    /// Passes to convergence: one per subsample of the N×N grid.
     pub fn total_passes(&self) -> u32 {
         self.aa * self.aa
     }

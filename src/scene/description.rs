@@ -1,9 +1,10 @@
 //! A validated scene: what is where, made of what. Every value here has passed the checks
 //! of the scene file loader, so preparing a `Scene` cannot fail.
 
+use crate::appearance::Material;
+use crate::appearance::PointLight;
 use crate::camera::Camera;
-use crate::light::PointLight;
-use crate::material::Material;
+use crate::geometry::Aabb;
 use glam::{DVec3, Vec3};
 
 /// Every position in a `Scene` (camera, lights, shapes) is relative to `origin`, which is
@@ -87,6 +88,31 @@ impl ShapeDesc {
         }
     }
 
+    /// The box around the shape, from its description alone (nothing is prepared).
+    pub fn bounds(&self) -> Aabb {
+        let around = |points: &[Vec3]| Aabb {
+            min: points.iter().copied().fold(Vec3::INFINITY, Vec3::min),
+            max: points.iter().copied().fold(Vec3::NEG_INFINITY, Vec3::max),
+        };
+        match self {
+            ShapeDesc::Sphere { center, radius } => Aabb {
+                min: *center - Vec3::splat(*radius),
+                max: *center + Vec3::splat(*radius),
+            },
+            ShapeDesc::Cylinder {
+                base,
+                radius,
+                height,
+            } => Aabb {
+                min: *base - Vec3::new(*radius, 0.0, *radius),
+                max: *base + Vec3::new(*radius, *height, *radius),
+            },
+            ShapeDesc::Polygon { vertices } => around(vertices),
+            ShapeDesc::Triangle { vertices } => around(vertices),
+            ShapeDesc::Tetrahedron { vertices } => around(vertices),
+        }
+    }
+
     /// The shape scaled about the frame's origin by `scale`, then moved by `offset`.
     pub fn transformed(&self, scale: f32, offset: Vec3) -> ShapeDesc {
         let p = |v: Vec3| v * scale + offset;
@@ -118,6 +144,17 @@ impl ShapeDesc {
 }
 
 impl Scene {
+    /// The box around every object (relative to `origin`); None without objects.
+    pub fn bounds(&self) -> Option<Aabb> {
+        self.objects
+            .iter()
+            .map(|o| o.shape.bounds())
+            .reduce(|a, b| Aabb {
+                min: a.min.min(b.min),
+                max: a.max.max(b.max),
+            })
+    }
+
     /// The same scene uniformly scaled about the world origin by `scale`, then moved by `offset`,
     /// camera and lights included: it must render the same image (the numerical stress
     /// tests rely on this). Lights do not fall off with distance, so their colours stay.

@@ -83,11 +83,10 @@ pub fn check_camera(c: &Camera) -> Result<(), EditError> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::load_scene;
     use glam::Vec3;
 
     fn seed() -> Scene {
-        load_scene(&crate::seed_scene_path()).unwrap()
+        crate::seed::scene().unwrap()
     }
 
     #[test]

@@ -3,12 +3,12 @@
 
 use super::description::{RenderDefaults, Scene, SceneObject, ShapeDesc};
 use super::error::{SceneError, line_column};
+use crate::appearance::Material;
+use crate::appearance::PointLight;
+use crate::appearance::{ImageTexture, Texture, TextureError};
 use crate::camera::Camera;
-use crate::light::PointLight;
 use crate::limits;
-use crate::material::Material;
 use crate::messages::{number, quoted};
-use crate::texture::{ImageTexture, Texture};
 use glam::Vec3;
 use serde::Deserialize;
 use std::collections::{BTreeMap, HashMap};
@@ -199,8 +199,61 @@ fn read_scene_text(path: &Path) -> Result<String, SceneError> {
     })
 }
 
+/// Where the files a scene names (image textures) are found.
+#[derive(Clone, Copy, Debug)]
+pub enum Assets<'a> {
+    /// Paths are relative to this folder (the scene file's own).
+    Folder(&'a Path),
+    /// Built into the program: each path as the scene writes it, and the file's bytes.
+    Embedded(&'a [(&'a str, &'a [u8])]),
+}
+
+impl Assets<'_> {
+    /// What `rel` names, for messages and to recognise a file named twice.
+    fn locate(&self, rel: &str) -> PathBuf {
+        match self {
+            Assets::Folder(dir) => dir.join(rel),
+            Assets::Embedded(_) => PathBuf::from(rel),
+        }
+    }
+
+    fn embedded(&self, rel: &str) -> Option<Result<&[u8], TextureError>> {
+        match self {
+            Assets::Folder(_) => None,
+            Assets::Embedded(files) => Some(
+                files
+                    .iter()
+                    .find(|(name, _)| *name == rel)
+                    .map(|(_, bytes)| *bytes)
+                    .ok_or_else(|| TextureError::Io("no such built-in file".into())),
+            ),
+        }
+    }
+
+    /// The size image `rel` declares, from its header.
+    fn probe(&self, rel: &str) -> Result<(u32, u32), TextureError> {
+        match self.embedded(rel) {
+            None => ImageTexture::probe(&self.locate(rel)),
+            Some(bytes) => ImageTexture::probe_bytes(bytes?),
+        }
+    }
+
+    /// Image `rel`, decoded.
+    fn load(&self, rel: &str) -> Result<ImageTexture, TextureError> {
+        match self.embedded(rel) {
+            None => ImageTexture::load(&self.locate(rel)),
+            Some(bytes) => ImageTexture::decode(bytes?),
+        }
+    }
+}
+
 /// Validates scene text; `path` names it in messages, `base_dir` resolves texture paths.
 pub fn parse_scene(source: &str, path: &Path, base_dir: &Path) -> Result<Scene, SceneError> {
+    parse_scene_with(source, path, Assets::Folder(base_dir))
+}
+
+/// Validates scene text; `path` names it in messages, `assets` finds the files it names.
+pub fn parse_scene_with(source: &str, path: &Path, assets: Assets) -> Result<Scene, SceneError> {
     let file: SceneFile = toml::from_str(source).map_err(|e| {
         let (line, column) = line_column(source, e.span().map_or(0, |s| s.start));
         SceneError::Syntax {
@@ -215,7 +268,7 @@ pub fn parse_scene(source: &str, path: &Path, base_dir: &Path) -> Result<Scene, 
     let v = Validator {
         path: path.to_path_buf(),
         source,
-        base_dir,
+        assets,
         origin: glam::DVec3::from(eye),
     };
     v.scene(file)
@@ -224,7 +277,7 @@ pub fn parse_scene(source: &str, path: &Path, base_dir: &Path) -> Result<Scene, 
 struct Validator<'a> {
     path: PathBuf,
     source: &'a str,
-    base_dir: &'a Path,
+    assets: Assets<'a>,
     /// The camera's eye, in f64: positions are stored relative to it.
     origin: glam::DVec3,
 }
@@ -569,11 +622,11 @@ impl Validator<'_> {
             let (Some(rel), "image") = (&t.path, t.kind.as_str()) else {
                 continue;
             };
-            let full = self.base_dir.join(rel);
+            let full = self.assets.locate(rel);
             if !seen.insert(full.clone()) {
                 continue;
             }
-            let Ok((w, h)) = ImageTexture::probe(&full) else {
+            let Ok((w, h)) = self.assets.probe(rel) else {
                 continue;
             };
             total += w as u64 * h as u64;
@@ -764,9 +817,8 @@ impl Validator<'_> {
                 let Some(rel) = &t.path else {
                     return Err(self.error(&at, "an image texture needs `path`"));
                 };
-                let full = self.base_dir.join(rel);
                 images
-                    .load(&full)
+                    .load(&self.assets, rel)
                     .map(Texture::Image)
                     .map_err(|e| self.field_error(&at, "path", e))
             }
@@ -882,11 +934,12 @@ struct Images {
 }
 
 impl Images {
-    fn load(&mut self, path: &Path) -> Result<Arc<ImageTexture>, String> {
-        if let Some(img) = self.loaded.get(path) {
+    fn load(&mut self, assets: &Assets, rel: &str) -> Result<Arc<ImageTexture>, String> {
+        let path = assets.locate(rel);
+        if let Some(img) = self.loaded.get(&path) {
             return Ok(img.clone());
         }
-        let img = ImageTexture::load(path).map_err(|e| {
+        let img = assets.load(rel).map_err(|e| {
             format!(
                 "cannot load image {}: {e}",
                 quoted(&path.display().to_string())

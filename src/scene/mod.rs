@@ -2,15 +2,18 @@
 //!
 //! ```text
 //! scene file (TOML) ──parse──▶ SceneFile ──validate──▶ Scene ──prepare──▶ PreparedScene
+//!                                                                      = Geometry + Appearance
 //! ```
 
 pub mod description;
 pub mod edit;
 pub mod error;
 pub mod file;
-pub mod prepared;
+mod geometry;
+mod prepared;
 
 pub use description::{RenderDefaults, Scene, SceneObject, ShapeDesc};
 pub use error::SceneError;
 pub use file::{load_scene, parse_scene};
-pub use prepared::{ObjectData, PreparedScene, Primitive};
+pub use geometry::{Geometry, ObjectGeometry, PlanarUv};
+pub use prepared::PreparedScene;

@@ -7,13 +7,12 @@ mod panel;
 mod render_thread;
 mod screenshot;
 
-use crate::cli::{ViewArgs, scene_path};
 use anyhow::{Context, Result, anyhow};
 use camera_input::CameraInput;
 use panel::{PANEL_WIDTH, PanelState};
 use pixels::{Pixels, PixelsBuilder, SurfaceTexture, wgpu};
 use prism::render::{AdaptiveSettings, RenderSettings};
-use prism::scene::{PreparedScene, load_scene};
+use prism::scene::Scene;
 use render_thread::{RenderThread, Request, Status};
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -33,17 +32,24 @@ const IDLE_REPAINT: Duration = Duration::from_millis(200);
 #[derive(Debug, Clone, Copy)]
 struct Wake;
 
-pub fn run(args: ViewArgs) -> Result<()> {
-    let path = scene_path(args.scene);
-    // Everything that can be wrong with the input is reported before a window opens.
-    let scene = load_scene(&path)?;
-    let aa = args.aa.unwrap_or(scene.render.aa);
-    let mut probe = RenderSettings::new(
-        args.width.unwrap_or(scene.render.width),
-        args.height.unwrap_or(scene.render.height),
-        aa,
-    );
-    probe.validate()?;
+/// What the viewer opens with, resolved and checked by the command line.
+pub struct Launch {
+    /// The scene to show.
+    pub scene: Scene,
+    /// The image size (beside the panel) and anti-aliasing level to start with.
+    pub settings: RenderSettings,
+    /// Where screenshots are saved.
+    pub screenshot_dir: PathBuf,
+}
+
+/// Opens the window and runs until it closes.
+pub fn run(launch: Launch) -> Result<()> {
+    let Launch {
+        scene,
+        settings: mut probe,
+        screenshot_dir,
+    } = launch;
+    let aa = probe.aa;
     let window_width = probe.width as u64 + PANEL_WIDTH.ceil() as u64;
     let largest = prism::limits::MAX_WINDOW_SIDE;
     if window_width > largest as u64 || probe.height > largest {
@@ -54,7 +60,6 @@ pub fn run(args: ViewArgs) -> Result<()> {
         }
         .into());
     }
-    let screenshot_dir = args.screenshot_dir.unwrap_or_else(|| PathBuf::from("."));
     let dir_problem = match std::fs::metadata(&screenshot_dir) {
         Ok(meta) if meta.is_dir() => None,
         Ok(_) => Some("it is not a directory".to_string()),
@@ -74,11 +79,9 @@ pub fn run(args: ViewArgs) -> Result<()> {
         )
     })?;
     event_loop.set_control_flow(ControlFlow::Wait);
-    let speed = {
-        let prepared = PreparedScene::new(&scene);
-        let b = prepared.bvh.bounds;
-        b.map_or(10.0, |b| ((b.max - b.min).length() * 0.25).max(1e-3))
-    };
+    let speed = scene
+        .bounds()
+        .map_or(10.0, |b| ((b.max - b.min).length() * 0.25).max(1e-3));
     probe.width = probe.width.max(1);
     let mut app = App {
         proxy: event_loop.create_proxy(),
@@ -214,7 +217,7 @@ impl App {
         let (iw, ih) = image_size(size, &window);
         let proxy = self.proxy.clone();
         let render = RenderThread::spawn(
-            Arc::new(PreparedScene::new(&self.panel.scene)),
+            &self.panel.scene,
             self.panel.camera,
             self.settings(iw, ih),
             move || {
@@ -365,9 +368,9 @@ impl App {
             })
             .context("drawing the window failed")?;
         let (iw, ih) = g.image_size();
-        if changes.scene {
-            let prepared = Arc::new(PreparedScene::new(&self.panel.scene));
-            g.render.send(Request::Scene(prepared));
+        for &object in &changes.materials {
+            let material = self.panel.scene.objects[object].material.clone();
+            g.render.send(Request::Material { object, material });
         }
         if changes.camera {
             self.send_camera(false);

@@ -13,7 +13,8 @@ pub const PANEL_WIDTH: f32 = 300.0;
 /// What the user changed this frame.
 #[derive(Default)]
 pub struct Changes {
-    pub scene: bool,
+    /// Objects whose material changed.
+    pub materials: Vec<usize>,
     pub camera: bool,
     pub settings: bool,
     pub screenshot: bool,
@@ -122,7 +123,7 @@ impl PanelState {
             );
             if r.changed() {
                 match self.scene.set_eta(i, eta) {
-                    Ok(()) => changes.scene = true,
+                    Ok(()) => changes.materials.push(i),
                     Err(e) => self.message = Some((e.to_string(), true)),
                 }
             }
@@ -140,7 +141,7 @@ impl PanelState {
             );
             if r.changed() {
                 match self.scene.set_transparency(i, t) {
-                    Ok(()) => changes.scene = true,
+                    Ok(()) => changes.materials.push(i),
                     Err(e) => self.message = Some((e.to_string(), true)),
                 }
             }

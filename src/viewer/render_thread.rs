@@ -1,10 +1,12 @@
 //! The render thread: owns the progressive render, takes requests by message, and publishes
 //! each finished pass for the UI thread to show. A generation counter, bumped with every
-//! request, cancels the pass in flight at the next band of rows.
+//! request, cancels the pass in flight at the next band of rows. Scenes are prepared here,
+//! never on the UI thread, and an appearance edit changes a table in place.
 
+use prism::appearance::Material;
 use prism::camera::Camera;
 use prism::render::{PassOutcome, ProgressiveRender, RenderSettings};
-use prism::scene::PreparedScene;
+use prism::scene::{PreparedScene, Scene};
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::mpsc::{Receiver, Sender, TryRecvError, channel};
 use std::sync::{Arc, Mutex, MutexGuard};
@@ -15,7 +17,11 @@ use std::time::Instant;
 pub const PREVIEW_BLOCK: u32 = 4;
 
 pub enum Request {
-    Scene(Arc<PreparedScene>),
+    /// Object `object`'s material changed (already validated): no geometry is rebuilt.
+    Material {
+        object: usize,
+        material: Material,
+    },
     /// `moving`: the camera is still being dragged or flown, so show a fast coarse preview
     /// and wait for the next position instead of refining.
     Camera {
@@ -63,9 +69,10 @@ pub struct RenderThread {
 }
 
 impl RenderThread {
-    /// Starts rendering at once; `wake` is called after each publication (to redraw).
+    /// Prepares `scene` and starts rendering it on a thread of its own; `wake` is called
+    /// after each publication (to redraw).
     pub fn spawn(
-        scene: Arc<PreparedScene>,
+        scene: &Scene,
         camera: Camera,
         settings: RenderSettings,
         wake: impl Fn() + Send + 'static,
@@ -73,18 +80,25 @@ impl RenderThread {
         let (tx, rx) = channel();
         let generation = Arc::new(AtomicU64::new(0));
         let published = Arc::new(Mutex::new(Published::default()));
-        let worker = Worker {
-            job: ProgressiveRender::new(scene, camera, settings),
-            requests: rx,
-            generation: generation.clone(),
-            published: published.clone(),
-            wake: Box::new(wake),
-            moving: false,
-            restarted: Instant::now(),
-        };
+        let scene = scene.clone();
+        let (generation_, published_) = (generation.clone(), published.clone());
         let handle = std::thread::Builder::new()
             .name("prism-render".into())
-            .spawn(move || worker.run())
+            .spawn(move || {
+                let job =
+                    ProgressiveRender::new(Arc::new(PreparedScene::new(&scene)), camera, settings);
+                drop(scene);
+                Worker {
+                    job,
+                    requests: rx,
+                    generation: generation_,
+                    published: published_,
+                    wake: Box::new(wake),
+                    moving: false,
+                    restarted: Instant::now(),
+                }
+                .run()
+            })
             .expect("the render thread starts");
         Self {
             requests: Some(tx),
@@ -163,7 +177,7 @@ impl Worker {
             // than die silently or fail again and again on the same pass.
             let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
                 pool.install(|| {
-                    crate::cli::injected_panic();
+                    crate::fault_injection::injected_panic();
                     if self.moving {
                         self.preview(&cancelled);
                         return true;
@@ -192,7 +206,9 @@ impl Worker {
     fn apply(&mut self, request: Request) {
         self.restarted = Instant::now();
         match request {
-            Request::Scene(scene) => self.job.set_scene(scene),
+            Request::Material { object, material } => self
+                .job
+                .edit_appearance(|a| a.set_material(object, material)),
             Request::Camera { camera, moving } => {
                 self.moving = moving;
                 self.job.set_camera(camera);

@@ -3,9 +3,8 @@
 //! Embree's BVH4 does). On the seed scene this replaces about nine scalar box tests per
 //! ray with two or three node tests.
 
-use super::aabb::Aabb;
 use super::bvh_build::{BinaryBvh, MAX_DEPTH};
-use super::ray::RayQuery;
+use crate::geometry::{Aabb, RayQuery};
 use crate::numerics::gamma;
 use crate::simd::F32x4;
 use std::mem::MaybeUninit;

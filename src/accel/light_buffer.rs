@@ -11,7 +11,7 @@
 //! start on the floor under an empty sky (docs/benchmarks/README.md). Cells that too many
 //! boxes cover fall back to the BVH.
 
-use crate::scene::Primitive;
+use super::Primitive;
 use glam::{DVec3, Vec3};
 
 /// Cells along each side of a cube face.
@@ -46,6 +46,8 @@ pub struct LightBuffer {
     occluders: Vec<Occluder>,
     /// Where each face's grid of cells lies.
     windows: [Window; FACES],
+    /// The light the buffer was built around.
+    position: Vec3,
 }
 
 /// The part of a face that its grid of cells covers: tangents `lo..lo + FACE_CELLS / scale`
@@ -117,10 +119,10 @@ const FACES: usize = 6;
 
 impl LightBuffer {
     /// The lists around a light at `light` for `primitives`.
-    pub fn new(light: Vec3, primitives: &[Primitive]) -> Self {
+    pub fn new(position: Vec3, primitives: &[Primitive]) -> Self {
         let r = FACE_CELLS as usize;
         let cell_count = FACES * r * r;
-        let light = light.as_dvec3();
+        let light = position.as_dvec3();
         let boxes: Vec<(DVec3, DVec3)> = primitives
             .iter()
             .map(|p| {
@@ -174,6 +176,7 @@ impl LightBuffer {
                 cells: vec![CROWDED; cell_count],
                 occluders: Vec::new(),
                 windows,
+                position,
             };
         }
 
@@ -216,7 +219,13 @@ impl LightBuffer {
             cells,
             occluders,
             windows,
+            position,
         }
+    }
+
+    /// The light the buffer was built around.
+    pub fn position(&self) -> Vec3 {
+        self.position
     }
 
     /// The occluders a shadow ray may meet on the segment from the light to a point at
@@ -452,11 +461,15 @@ fn round_down(distance_sq: f64) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::accel::{AccelOptions, Accelerator};
     use crate::geometry::{Ray, RayQuery, Shape, Sphere};
-    use crate::scene::{PreparedScene, load_scene};
+    use crate::scene::Geometry;
 
-    fn seed() -> PreparedScene {
-        PreparedScene::new(&load_scene(&crate::seed_scene_path()).unwrap())
+    /// The seed's primitives, and its light.
+    fn seed() -> (Accelerator, Vec3) {
+        let scene = crate::seed::scene().unwrap();
+        let geometry = Geometry::new(&scene, AccelOptions::ALL);
+        (geometry.accel().clone(), scene.lights[0].position)
     }
 
     /// A small deterministic generator for test points.
@@ -473,16 +486,16 @@ mod tests {
 
     #[test]
     fn every_primitive_a_shadow_ray_meets_is_listed_before_its_far_end() {
-        let scene = seed();
-        let bounds = scene.bvh.bounds.unwrap();
+        let (scene, seed_light) = seed();
+        let bounds = scene.bounds().unwrap();
         // The seed's light above the scene, one among its objects (boxes straddle its
         // cube's planes), and one far off to the side (a narrow window).
         for light in [
-            scene.lights[0].position,
+            seed_light,
             Vec3::new(0.0, -5.0, -70.0),
             Vec3::new(-900.0, 30.0, 400.0),
         ] {
-            let buffer = LightBuffer::new(light, &scene.primitives);
+            let buffer = LightBuffer::new(light, scene.primitives());
             let mut rng = Lcg(7);
             let mut blocked = 0;
             for _ in 0..20_000 {
@@ -495,7 +508,7 @@ mod tests {
                     .at(-to_light)
                     .expect("the seed scene has no crowded cell");
                 let distance_sq = to_light.length_squared();
-                for (i, p) in scene.primitives.iter().enumerate() {
+                for (i, p) in scene.primitives().iter().enumerate() {
                     if p.shape.intersect(&q, 1.0).is_some() {
                         blocked += 1;
                         let entry = listed.iter().find(|o| o.primitive == i as u32);
@@ -550,8 +563,8 @@ mod tests {
         assert_eq!(buffer.at(Vec3::new(1.0, 1.0, -1000.0)).unwrap(), &[]);
         assert_eq!(buffer.at(Vec3::new(0.0, 0.0, 1000.0)).unwrap(), &[]);
         // The seed's light sees its scene with no crowded cell either.
-        let scene = seed();
-        let census = LightBuffer::new(scene.lights[0].position, &scene.primitives).census();
+        let (scene, light) = seed();
+        let census = LightBuffer::new(light, scene.primitives()).census();
         assert_eq!(census.crowded, 0, "{census:?}");
     }
 
@@ -599,8 +612,8 @@ mod tests {
 
     #[test]
     fn the_light_itself_and_non_finite_directions_have_no_cell() {
-        let scene = seed();
-        let buffer = LightBuffer::new(scene.lights[0].position, &scene.primitives);
+        let (scene, light) = seed();
+        let buffer = LightBuffer::new(light, scene.primitives());
         assert!(buffer.at(Vec3::ZERO).is_none());
         assert!(buffer.at(Vec3::new(f32::INFINITY, 0.0, 1.0)).is_none());
         assert!(buffer.at(Vec3::new(f32::NAN, 0.0, 1.0)).is_none());

@@ -9,9 +9,9 @@
 //! every primary ray (docs/benchmarks/README.md). Tiles that too many boxes cover fall
 //! back to the BVH, which then does better.
 
+use super::Primitive;
 use crate::camera::CameraRays;
 use crate::geometry::Shape;
-use crate::scene::PreparedScene;
 use glam::DVec3;
 
 /// Tile side, in pixels.
@@ -55,7 +55,7 @@ pub struct FirstHitTiles {
 
 impl FirstHitTiles {
     /// The lists for an image of `width` × `height` pixels seen through `rays`.
-    pub fn new(scene: &PreparedScene, rays: &CameraRays, width: u32, height: u32) -> Self {
+    pub fn new(primitives: &[Primitive], rays: &CameraRays, width: u32, height: u32) -> Self {
         let tiles_x = width.div_ceil(TILE);
         let tiles_y = height.div_ceil(TILE);
         let tile_count = tiles_x as usize * tiles_y as usize;
@@ -64,8 +64,7 @@ impl FirstHitTiles {
 
         // Each primitive's tile rectangle (inclusive), or None when no primary ray can
         // reach it.
-        let rectangles: Vec<Option<(u32, u32, u32, u32)>> = scene
-            .primitives
+        let rectangles: Vec<Option<(u32, u32, u32, u32)>> = primitives
             .iter()
             .map(|primitive| {
                 let bounds = primitive.shape.bounds();
@@ -86,7 +85,7 @@ impl FirstHitTiles {
             .map(|&(x0, y0, x1, y1)| (x1 - x0 + 1) as u64 * (y1 - y0 + 1) as u64)
             .sum();
         let budget = (MAX_CANDIDATES * tile_count) as u64
-            + crate::limits::LISTINGS_PER_PRIMITIVE * scene.primitives.len() as u64;
+            + crate::limits::LISTINGS_PER_PRIMITIVE * primitives.len() as u64;
         if listed > budget {
             return Self {
                 tiles_x,
@@ -98,8 +97,7 @@ impl FirstHitTiles {
         }
 
         let mut per_tile: Vec<Vec<Candidate>> = vec![Vec::new(); tile_count];
-        for (index, (primitive, rectangle)) in scene.primitives.iter().zip(&rectangles).enumerate()
-        {
+        for (index, (primitive, rectangle)) in primitives.iter().zip(&rectangles).enumerate() {
             let bounds = primitive.shape.bounds();
             let (lo, hi) = (bounds.min.as_dvec3(), bounds.max.as_dvec3());
             let Some((x0, y0, x1, y1)) = *rectangle else {
@@ -338,21 +336,26 @@ fn lower_bound_distance(eye: DVec3, lo: DVec3, hi: DVec3) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::accel::{AccelOptions, Accelerator, Reach};
     use crate::camera::Camera;
     use crate::geometry::RayQuery;
-    use crate::scene::{PreparedScene, load_scene};
+    use crate::scene::{Geometry, Scene};
     use glam::Vec3;
 
-    fn seed() -> (PreparedScene, Camera) {
-        let scene = load_scene(&crate::seed_scene_path()).unwrap();
-        (PreparedScene::new(&scene), scene.camera)
+    fn prepare(scene: &Scene) -> Accelerator {
+        Geometry::new(scene, AccelOptions::ALL).accel().clone()
+    }
+
+    fn seed() -> (Accelerator, Camera) {
+        let scene = crate::seed::scene().unwrap();
+        (prepare(&scene), scene.camera)
     }
 
     /// For subsample positions all over every pixel (corners included), the candidates give
     /// exactly the BVH's nearest hit: the same primitive at the same distance, or none.
-    fn assert_matches_bvh(scene: &PreparedScene, camera: Camera, width: u32, height: u32) {
+    fn assert_matches_bvh(scene: &Accelerator, camera: Camera, width: u32, height: u32) {
         let rays = camera.rays(width, height);
-        let tiles = FirstHitTiles::new(scene, &rays, width, height);
+        let tiles = FirstHitTiles::new(scene.primitives(), &rays, width, height);
         let offsets = [0.0, 0.5, 0.999_999, 0.25];
         let mut hits = 0;
         for y in 0..height {
@@ -363,10 +366,9 @@ mod tests {
                 for (i, &dx) in offsets.iter().enumerate() {
                     let dy = offsets[(i + 1) % offsets.len()];
                     let q = RayQuery::new(rays.ray(x as f32 + dx, y as f32 + dy));
-                    let expected = scene.intersect(&q, 0.0, f32::INFINITY);
-                    let found = scene.intersect_among(&q, candidates);
-                    let key =
-                        |h: Option<(crate::geometry::ShapeHit, u32)>| h.map(|(h, i)| (h.t, i));
+                    let expected = scene.nearest_hit(&q, Reach::After(0.0));
+                    let found = scene.nearest_hit(&q, Reach::Among(candidates));
+                    let key = |h: Option<crate::accel::Hit>| h.map(|h| (h.shape.t, h.primitive));
                     assert_eq!(key(found), key(expected), "pixel ({x}, {y}) + ({dx}, {dy})");
                     hits += expected.is_some() as u32;
                 }
@@ -390,18 +392,16 @@ mod tests {
     fn a_floor_tile_lists_only_the_floor_triangle_it_sees() {
         // The floor is a quad split along a diagonal into two triangles whose boxes are
         // the same: only tiles near the diagonal's image list both.
-        let (scene, camera) = seed();
-        let floor = scene
-            .objects
-            .iter()
-            .position(|o| o.name == "floor")
-            .unwrap() as u32;
-        let triangles: Vec<u32> = (0..scene.primitives.len() as u32)
-            .filter(|&i| scene.primitives[i as usize].object == floor)
+        let description = crate::seed::scene().unwrap();
+        let geometry = Geometry::new(&description, AccelOptions::ALL);
+        let (scene, camera) = (geometry.accel(), description.camera);
+        let floor = geometry.find("floor").unwrap();
+        let triangles: Vec<u32> = (0..scene.primitives().len() as u32)
+            .filter(|&i| scene.primitive(i).object == floor)
             .collect();
         assert_eq!(triangles.len(), 2);
         let (w, h) = (200, 150);
-        let tiles = FirstHitTiles::new(&scene, &camera.rays(w, h), w, h);
+        let tiles = FirstHitTiles::new(scene.primitives(), &camera.rays(w, h), w, h);
         let (mut one, mut both) = (0, 0);
         for ty in 0..h.div_ceil(TILE) {
             for tx in 0..w.div_ceil(TILE) {
@@ -452,7 +452,7 @@ mod tests {
     #[test]
     fn the_seed_view_is_mostly_cheap_tiles() {
         let (scene, camera) = seed();
-        let tiles = FirstHitTiles::new(&scene, &camera.rays(800, 600), 800, 600);
+        let tiles = FirstHitTiles::new(scene.primitives(), &camera.rays(800, 600), 800, 600);
         let census = tiles.census();
         assert_eq!(census.tiles, 100 * 75);
         assert_eq!(census.crowded, 0);
@@ -475,7 +475,7 @@ mod tests {
     fn boxes_behind_the_eye_are_in_no_tile_and_crowds_go_to_the_bvh() {
         use crate::scene::{Scene, SceneObject, ShapeDesc};
         let (_, camera) = seed();
-        let template = load_scene(&crate::seed_scene_path()).unwrap();
+        let template = crate::seed::scene().unwrap();
         let material = template.objects[0].material.clone();
         let sphere = |center: Vec3| SceneObject {
             name: "s".into(),
@@ -488,13 +488,13 @@ mod tests {
         // The seed camera looks down −z from the origin.
         let mut objects = vec![sphere(Vec3::new(0.0, 0.0, 10.0))];
         objects.extend((0..20).map(|i| sphere(Vec3::new(0.0, 0.0, -20.0 - i as f32))));
-        let scene = PreparedScene::new(&Scene {
+        let scene = prepare(&Scene {
             objects,
             ..template
         });
-        let tiles = FirstHitTiles::new(&scene, &camera.rays(160, 120), 160, 120);
+        let tiles = FirstHitTiles::new(scene.primitives(), &camera.rays(160, 120), 160, 120);
         let behind = scene
-            .primitives
+            .primitives()
             .iter()
             .position(|p| p.shape.bounds().min.z > 0.0)
             .unwrap() as u32;

@@ -58,15 +58,27 @@ impl ImageTexture {
     /// Reads an image file, refusing anything but a regular file within the limits: the
     /// size is read from the header before any texel is decoded.
     pub fn load(path: &Path) -> Result<Self, TextureError> {
-        use crate::limits::MAX_TEXTURE_TEXELS;
         check_file(path)?;
         let bytes = std::fs::read(path).map_err(io_error)?;
-        let reader = || {
-            image::ImageReader::new(std::io::Cursor::new(&bytes[..]))
-                .with_guessed_format()
-                .map_err(io_error)
-        };
-        let header = reader()?;
+        Self::decode(&bytes)
+    }
+
+    /// The width and height that image data (a whole file's bytes) declares.
+    pub fn probe_bytes(bytes: &[u8]) -> Result<(u32, u32), TextureError> {
+        check_bytes(bytes)?;
+        let (width, height) = reader(bytes)?
+            .into_dimensions()
+            .map_err(|e| TextureError::Decode(e.to_string()))?;
+        check_size(width, height)?;
+        Ok((width, height))
+    }
+
+    /// Decodes image data (a whole file's bytes), within the limits: the size is read from
+    /// the header before any texel is decoded.
+    pub fn decode(bytes: &[u8]) -> Result<Self, TextureError> {
+        use crate::limits::MAX_TEXTURE_TEXELS;
+        check_bytes(bytes)?;
+        let header = reader(bytes)?;
         let format = header.format();
         let (width, height) = header
             .into_dimensions()
@@ -74,10 +86,10 @@ impl ImageTexture {
         check_size(width, height)?;
         // JPEG decoders fill a truncated stream with grey rather than fail; a complete
         // stream ends with the end-of-image marker (trailing padding aside).
-        if format == Some(image::ImageFormat::Jpeg) && !ends_with_jpeg_eoi(&bytes) {
+        if format == Some(image::ImageFormat::Jpeg) && !ends_with_jpeg_eoi(bytes) {
             return Err(TextureError::Truncated);
         }
-        let mut decoder = reader()?;
+        let mut decoder = reader(bytes)?;
         let mut limits = image::Limits::default();
         limits.max_image_width = Some(width);
         limits.max_image_height = Some(height);
@@ -87,11 +99,14 @@ impl ImageTexture {
         let img = decoder
             .decode()
             .map_err(|e| TextureError::Decode(e.to_string()))?;
-        drop(bytes);
         let rgb = img.into_rgb8();
         Ok(Self::from_rgb8(rgb.width(), rgb.height(), rgb.into_raw()))
     }
 
+    /// An image of `width` × `height` texels from RGB bytes, rows top to bottom.
+    ///
+    /// # Panics
+    /// If `raw` does not hold exactly three bytes per texel.
     pub fn from_rgb8(width: u32, height: u32, raw: Vec<u8>) -> Self {
         assert_eq!(
             raw.len() as u64,
@@ -161,6 +176,22 @@ fn check_file(path: &Path) -> Result<(), TextureError> {
     }
     if meta.len() > crate::limits::MAX_TEXTURE_FILE_BYTES {
         return Err(TextureError::FileTooLarge { bytes: meta.len() });
+    }
+    Ok(())
+}
+
+/// A reader of in-memory image data, its format guessed from its first bytes.
+fn reader(bytes: &[u8]) -> Result<image::ImageReader<std::io::Cursor<&[u8]>>, TextureError> {
+    image::ImageReader::new(std::io::Cursor::new(bytes))
+        .with_guessed_format()
+        .map_err(io_error)
+}
+
+/// That in-memory image data is of a size a texture file may have.
+fn check_bytes(bytes: &[u8]) -> Result<(), TextureError> {
+    let len = bytes.len() as u64;
+    if len > crate::limits::MAX_TEXTURE_FILE_BYTES {
+        return Err(TextureError::FileTooLarge { bytes: len });
     }
     Ok(())
 }

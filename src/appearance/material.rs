@@ -1,6 +1,6 @@
 //! Phong surface terms and the directions of mirror reflection and refraction.
 
-use crate::texture::Texture;
+use super::texture::Texture;
 use glam::{Vec3, Vec3A};
 
 /// A Whitted material, as in the seed: Phong local shading, plus a mirror term and a

@@ -1,7 +1,7 @@
 //! The binned surface area heuristic build (Wald 2007) of a binary hierarchy, which
 //! `bvh.rs` then collapses into four-wide nodes for traversal.
 
-use super::aabb::Aabb;
+use crate::geometry::Aabb;
 
 /// Interior nodes have `count == 0` and their children at `first` and `first + 1`; leaves
 /// hold primitives `first .. first + count` of the reordered primitive array.

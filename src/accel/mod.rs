@@ -1,0 +1,378 @@
+//! The acceleration layer: everything that finds what a ray meets, behind two queries.
+//!
+//! - [`Accelerator::nearest_hit`]: the nearest surface along a ray, from anywhere, from
+//!   inside an isolated solid, or from the eye through a first-hit tile.
+//! - [`Accelerator::light_reaching`]: the fraction of a point light's light that reaches a
+//!   point, through the light's buffer or the BVH.
+//!
+//! Which shortcuts exist is decided when the layer is built ([`AccelOptions`]); the
+//! integrator asks the same two questions either way and gets the same answers.
+//!
+//! ```text
+//! primitives ──build──▶ BVH (bvh.rs, bvh_build.rs)
+//!                       isolated solids (isolated.rs)
+//!                       one light buffer per light (light_buffer.rs)
+//! camera + image size ──view──▶ first-hit tiles (first_hit.rs)
+//! ```
+
+mod bvh;
+mod bvh_build;
+mod first_hit;
+mod isolated;
+mod light_buffer;
+mod primitive;
+
+pub use bvh::Bvh;
+pub use first_hit::{Candidate, FirstHitTiles, TileCensus};
+pub use light_buffer::{LightBuffer, LightBufferCensus};
+pub use primitive::Primitive;
+
+/// The most candidates a first-hit tile lists before it is left to the BVH.
+pub use first_hit::MAX_CANDIDATES;
+/// The most occluders a light-buffer cell lists before it is left to the BVH.
+pub use light_buffer::MAX_OCCLUDERS;
+
+use crate::appearance::ShadowFilters;
+use crate::camera::CameraRays;
+use crate::geometry::{Aabb, Ray, RayQuery, ShapeHit};
+use glam::{Vec3, Vec3A};
+
+/// Which shortcuts the layer builds. Every one leaves every image unchanged
+/// (tests/optimizations.rs); turning one off is for measuring what it buys.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct AccelOptions {
+    /// A BVH over the primitives; off, every ray tests every primitive (one leaf).
+    pub bvh: bool,
+    /// Primary rays look up what they can hit first by tile (first_hit.rs).
+    pub first_hit_tiles: bool,
+    /// Shadow rays look up what they may meet by their direction from the light
+    /// (light_buffer.rs).
+    pub light_buffers: bool,
+    /// A ray inside an isolated solid tests only that solid (isolated.rs).
+    pub isolated_solids: bool,
+    /// In a scene where no surface transmits light, a shadow ray stops at the first
+    /// occluder without looking at materials.
+    pub any_hit_shadows: bool,
+}
+
+impl Default for AccelOptions {
+    fn default() -> Self {
+        Self::ALL
+    }
+}
+
+impl AccelOptions {
+    /// Every shortcut on: what renders use.
+    pub const ALL: AccelOptions = AccelOptions {
+        bvh: true,
+        first_hit_tiles: true,
+        light_buffers: true,
+        isolated_solids: true,
+        any_hit_shadows: true,
+    };
+}
+
+/// The nearest surface a ray meets.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Hit {
+    /// Where along the ray, and which part of the shape.
+    pub shape: ShapeHit,
+    /// Index of the primitive hit, for [`Accelerator::primitive`].
+    pub primitive: u32,
+}
+
+/// What is known, before a ray is traced, about what it can hit first.
+#[derive(Clone, Copy, Debug)]
+pub enum Reach<'a> {
+    /// Anything beyond this distance.
+    After(f32),
+    /// The ray starts inside this primitive, an isolated solid
+    /// ([`Accelerator::isolated_solid`]), and its hit beyond `t_min` is on it, unless its
+    /// origin was not inside after all; then anything beyond `t_min`.
+    Inside {
+        /// The solid's primitive.
+        solid: u32,
+        /// Hits at or before this distance do not count.
+        t_min: f32,
+    },
+    /// A primary ray that can only hit these first, nearest box first (a first-hit tile);
+    /// an empty list means it hits nothing.
+    Among(&'a [Candidate]),
+}
+
+/// The primitives of a scene and every structure built to find what rays meet among them.
+#[derive(Clone, Debug)]
+pub struct Accelerator {
+    /// In the BVH's order: its leaves index into this.
+    primitives: Vec<Primitive>,
+    bvh: Bvh,
+    /// For each object, its primitive when the object is an isolated solid.
+    isolated: Vec<Option<u32>>,
+    /// One per light, in the scene's order (empty without the option).
+    light_buffers: Vec<LightBuffer>,
+    options: AccelOptions,
+}
+
+impl Accelerator {
+    /// Builds the layer over `primitives` (of `object_count` objects) for point lights at
+    /// `lights`.
+    pub fn build(
+        primitives: Vec<Primitive>,
+        object_count: usize,
+        lights: &[Vec3],
+        options: AccelOptions,
+    ) -> Self {
+        let bounds: Vec<Aabb> = primitives.iter().map(|p| p.shape.bounds()).collect();
+        let (mut bvh, order) = Bvh::build(&bounds);
+        let primitives: Vec<Primitive> = order.iter().map(|&i| primitives[i as usize]).collect();
+        let isolated = if options.isolated_solids {
+            isolated::isolated_solids(&primitives, &bvh, object_count)
+        } else {
+            vec![None; object_count]
+        };
+        if !options.bvh
+            && let Some(bounds) = bvh.bounds
+        {
+            bvh = Bvh::single_leaf(bounds, primitives.len() as u32);
+        }
+        let light_buffers = if options.light_buffers {
+            lights
+                .iter()
+                .map(|&light| LightBuffer::new(light, &primitives))
+                .collect()
+        } else {
+            Vec::new()
+        };
+        Self {
+            primitives,
+            bvh,
+            isolated,
+            light_buffers,
+            options,
+        }
+    }
+
+    /// The options the layer was built with.
+    pub fn options(&self) -> AccelOptions {
+        self.options
+    }
+
+    /// Primitive `index`, as a [`Hit`] names it.
+    #[inline]
+    pub fn primitive(&self, index: u32) -> &Primitive {
+        &self.primitives[index as usize]
+    }
+
+    /// Every primitive, in the order hits name them.
+    pub fn primitives(&self) -> &[Primitive] {
+        &self.primitives
+    }
+
+    /// The box around every primitive; None for an empty scene.
+    pub fn bounds(&self) -> Option<Aabb> {
+        self.bvh.bounds
+    }
+
+    /// The BVH's node count.
+    pub fn bvh_nodes(&self) -> usize {
+        self.bvh.nodes.len()
+    }
+
+    /// The primitive of `object` when it is an isolated solid: a ray that starts inside
+    /// it can ask [`Reach::Inside`].
+    #[inline]
+    pub fn isolated_solid(&self, object: u32) -> Option<u32> {
+        self.isolated[object as usize]
+    }
+
+    /// Light `light`'s buffer, when the option built one.
+    pub fn light_buffer(&self, light: usize) -> Option<&LightBuffer> {
+        self.light_buffers.get(light)
+    }
+
+    /// What primary rays of an image of `width` × `height` pixels seen through `rays` can
+    /// hit first, by pixel.
+    pub fn camera_view(&self, rays: &CameraRays, width: u32, height: u32) -> CameraView {
+        CameraView {
+            tiles: self
+                .options
+                .first_hit_tiles
+                .then(|| FirstHitTiles::new(&self.primitives, rays, width, height)),
+        }
+    }
+
+    /// The nearest hit along `q` that `reach` allows.
+    #[inline(always)]
+    pub fn nearest_hit(&self, q: &RayQuery, reach: Reach) -> Option<Hit> {
+        match reach {
+            Reach::After(t_min) => self.nearest_after(q, t_min),
+            Reach::Inside { solid, t_min } => {
+                // Any other primitive's hit would lie on the segment from the origin to
+                // this exit, which is inside the solid's box, where no other box comes.
+                let shape = &self.primitives[solid as usize].shape;
+                match shape.intersect_after(q, t_min, f32::INFINITY) {
+                    Some(hit) => Some(Hit {
+                        shape: hit,
+                        primitive: solid,
+                    }),
+                    None => self.nearest_after(q, t_min),
+                }
+            }
+            Reach::Among(candidates) => self.nearest_among(q, candidates),
+        }
+    }
+
+    /// The nearest hit beyond `t_min`, by traversal.
+    #[inline(always)]
+    fn nearest_after(&self, q: &RayQuery, t_min: f32) -> Option<Hit> {
+        let mut best: Option<Hit> = None;
+        self.bvh.closest(q, f32::INFINITY, |i, t_max| {
+            let hit = self.primitives[i as usize]
+                .shape
+                .intersect_after(q, t_min, t_max)?;
+            best = Some(Hit {
+                shape: hit,
+                primitive: i,
+            });
+            Some(hit.t)
+        });
+        best
+    }
+
+    /// The nearest hit among `candidates`, which hold every primitive the ray can reach,
+    /// sorted by a lower bound of the distance at which it can hit them: the same answer
+    /// as a traversal from 0.
+    #[inline]
+    fn nearest_among(&self, q: &RayQuery, candidates: &[Candidate]) -> Option<Hit> {
+        let mut best: Option<Hit> = None;
+        let mut t_max = f32::INFINITY;
+        for c in candidates {
+            if c.min_t >= t_max {
+                break; // this box and every later one start beyond the nearest hit
+            }
+            let shape = &self.primitives[c.primitive as usize].shape;
+            if let Some(hit) = shape.intersect_after(q, 0.0, t_max) {
+                t_max = hit.t;
+                best = Some(Hit {
+                    shape: hit,
+                    primitive: c.primitive,
+                });
+            }
+        }
+        best
+    }
+
+    /// The fraction of the light of point light `light`, at `position`, that reaches
+    /// `origin`: the shadow ray from `origin` to the light, tinted by every transparent
+    /// surface it crosses (`filters`). The light's buffer answers where it lists the ray's
+    /// direction, else the BVH; both give the same answer. `position` must be where the
+    /// layer was built to see light `light` (a light that moves is a geometry change).
+    ///
+    /// `leaving` names the object whose surface the ray starts on, when it leaves from the
+    /// outside towards a light on that side (or from either side of a flat object). Every
+    /// object is convex (a sphere, a closed cylinder, a tetrahedron, a convex polygon), so it
+    /// lies wholly behind the plane tangent at the origin and the ray cannot meet it again:
+    /// the buffer's lists skip it. The BVH path tests it regardless, as the reference.
+    #[inline]
+    pub fn light_reaching(
+        &self,
+        light: usize,
+        position: Vec3A,
+        origin: Vec3A,
+        leaving: Option<u32>,
+        filters: &ShadowFilters,
+    ) -> Vec3A {
+        let to_light = position - origin;
+        let opaque = self.options.any_hit_shadows && !filters.any_transmission();
+        // The shadow ray ends exactly at the light: t = 1 on (light − origin).
+        let shadow = |to_light| RayQuery::new(Ray::new(origin, to_light));
+        if let Some(buffer) = self.light_buffers.get(light)
+            && let Some(listed) = buffer.at((-to_light).into())
+        {
+            debug_assert_eq!(
+                buffer.position(),
+                Vec3::from(position),
+                "light {light} moved"
+            );
+            let distance_sq = to_light.length_squared();
+            let mut q = None;
+            let mut light = Vec3A::ONE;
+            for o in listed {
+                if o.min_distance_sq >= distance_sq {
+                    break; // this box and every later one start beyond the origin
+                }
+                if Some(o.object) == leaving {
+                    continue;
+                }
+                // Built only for a ray that has something to test.
+                let q = q.get_or_insert_with(|| shadow(to_light));
+                if !self.pass_through(o.primitive, q, 1.0, opaque, filters, &mut light) {
+                    break;
+                }
+            }
+            return light;
+        }
+        let q = shadow(to_light);
+        let mut light = Vec3A::ONE;
+        self.bvh.visit(&q, 1.0, |i| {
+            self.pass_through(i, &q, 1.0, opaque, filters, &mut light)
+        });
+        light
+    }
+
+    /// Filters `light` by what primitive `i` lets through along the segment (0, t_max);
+    /// false once no light is left.
+    #[inline(always)]
+    fn pass_through(
+        &self,
+        i: u32,
+        q: &RayQuery,
+        t_max: f32,
+        opaque: bool,
+        filters: &ShadowFilters,
+        light: &mut Vec3A,
+    ) -> bool {
+        let prim = &self.primitives[i as usize];
+        if opaque {
+            if prim.shape.intersect(q, t_max).is_some() {
+                *light = Vec3A::ZERO;
+                return false;
+            }
+            return true;
+        }
+        let crossings = prim.shape.crossings(q, t_max);
+        if crossings > 0 {
+            let filter = filters.of(prim.object);
+            *light *= filter;
+            if crossings == 2 {
+                *light *= filter;
+            }
+            if *light == Vec3A::ZERO {
+                return false;
+            }
+        }
+        true
+    }
+}
+
+/// What primary rays through each pixel of one view can hit first.
+#[derive(Clone, Debug)]
+pub struct CameraView {
+    tiles: Option<FirstHitTiles>,
+}
+
+impl CameraView {
+    /// What the primary rays through pixel (x, y) can hit first.
+    #[inline]
+    pub fn reach(&self, x: u32, y: u32) -> Reach<'_> {
+        match self.tiles.as_ref().and_then(|t| t.at(x, y)) {
+            Some(candidates) => Reach::Among(candidates),
+            None => Reach::After(0.0),
+        }
+    }
+
+    /// The first-hit tiles, when the option built them.
+    pub fn tiles(&self) -> Option<&FirstHitTiles> {
+        self.tiles.as_ref()
+    }
+}

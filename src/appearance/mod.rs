@@ -1,0 +1,118 @@
+//! What surfaces and lights look like: materials, textures, lights, the background. Kept
+//! apart from geometry so that an edit changes a table in place and rebuilds nothing.
+
+mod light;
+mod material;
+mod texture;
+
+pub use light::PointLight;
+pub use material::{Material, reflect, refract};
+pub use texture::{ImageTexture, Texture, TextureError};
+
+use crate::scene::Scene;
+use glam::Vec3A;
+
+/// The appearance of a prepared scene: one material per object, the lights, the ambient
+/// light and the background, and what they imply for shadow rays.
+#[derive(Clone, Debug)]
+pub struct Appearance {
+    materials: Vec<Material>,
+    shadow: ShadowFilters,
+    lights: Vec<PointLight>,
+    /// Read at every hit and miss, so kept in the hot path's SIMD form.
+    ambient: Vec3A,
+    background: Vec3A,
+    max_depth: u32,
+}
+
+/// What one crossing of each object's surface lets through to a shadow ray.
+#[derive(Clone, Debug)]
+pub struct ShadowFilters {
+    per_object: Vec<Vec3A>,
+    /// Whether any surface transmits light; when none does, a shadow ray may stop at the
+    /// first occluder without looking at materials.
+    any_transmission: bool,
+}
+
+impl ShadowFilters {
+    fn new(materials: &[Material]) -> Self {
+        Self {
+            per_object: materials.iter().map(|m| m.shadow_filter().into()).collect(),
+            any_transmission: materials.iter().any(|m| m.transparency > 0.0),
+        }
+    }
+
+    /// What a crossing of `object`'s surface lets through.
+    #[inline]
+    pub fn of(&self, object: u32) -> Vec3A {
+        self.per_object[object as usize]
+    }
+
+    /// Whether any surface transmits light.
+    #[inline]
+    pub fn any_transmission(&self) -> bool {
+        self.any_transmission
+    }
+}
+
+impl Appearance {
+    /// The appearance of `scene`'s objects and lights.
+    pub fn new(scene: &Scene) -> Self {
+        let materials: Vec<Material> = scene.objects.iter().map(|o| o.material.clone()).collect();
+        Self {
+            shadow: ShadowFilters::new(&materials),
+            materials,
+            lights: scene.lights.clone(),
+            ambient: scene.ambient.into(),
+            background: scene.background.into(),
+            max_depth: scene.render.max_depth,
+        }
+    }
+
+    /// Object `object`'s material.
+    #[inline]
+    pub fn material(&self, object: u32) -> &Material {
+        &self.materials[object as usize]
+    }
+
+    /// Replaces object `object`'s material (already validated, as the scene loader and
+    /// `Scene`'s edits do). Costs one pass over the objects' filters, no rebuild.
+    ///
+    /// # Panics
+    /// If there is no such object.
+    pub fn set_material(&mut self, object: usize, material: Material) {
+        self.shadow.per_object[object] = material.shadow_filter().into();
+        self.materials[object] = material;
+        self.shadow.any_transmission = self.materials.iter().any(|m| m.transparency > 0.0);
+    }
+
+    /// What shadow rays see of each surface.
+    #[inline]
+    pub fn shadow_filters(&self) -> &ShadowFilters {
+        &self.shadow
+    }
+
+    /// The point lights.
+    #[inline]
+    pub fn lights(&self) -> &[PointLight] {
+        &self.lights
+    }
+
+    /// Light that falls on every surface from everywhere.
+    #[inline]
+    pub fn ambient(&self) -> Vec3A {
+        self.ambient
+    }
+
+    /// What a ray that leaves the scene sees.
+    #[inline]
+    pub fn background(&self) -> Vec3A {
+        self.background
+    }
+
+    /// The most bounces along one path.
+    #[inline]
+    pub fn max_depth(&self) -> u32 {
+        self.max_depth
+    }
+}

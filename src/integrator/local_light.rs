@@ -1,0 +1,66 @@
+//! The light a surface sends back from the lights directly: ambient, and Phong diffuse and
+//! specular terms from every light a shadow ray reaches.
+
+use super::{Integrator, Shading};
+use crate::appearance::reflect;
+use glam::Vec3A;
+
+impl Integrator<'_> {
+    /// The ambient, diffuse and specular light at `at`; the diffuse part fades with the
+    /// material's opacity, the highlight (light reflected at the surface) does not.
+    #[inline]
+    pub(super) fn local_light(&mut self, at: &Shading) -> Vec3A {
+        let material = at.material;
+        let opacity = 1.0 - material.transparency;
+        if !(opacity > 0.0 || material.specular > 0.0) {
+            return Vec3A::ZERO;
+        }
+        let object = self.geometry.object(at.primitive.object);
+        let p = at.surface.point;
+        let n = at.n;
+        let uv = if !material.texture.needs_uv() {
+            (0.0, 0.0)
+        } else if let Some(planar) = object.planar_uv {
+            planar.uv(p)
+        } else {
+            at.primitive.shape.uv(&at.surface, &at.hit.shape)
+        };
+        let base = material.texture.eval(uv, p - object.origin);
+        if !material.texture.needs_uv() {
+            self.signature.pattern(base);
+        }
+        let mut diffuse = base * self.appearance.ambient() * material.ambient;
+        let mut specular = Vec3A::ZERO;
+        let accel = self.accel();
+        let filters = self.appearance.shadow_filters();
+        for (light_index, light) in self.appearance.lights().iter().enumerate() {
+            let position = Vec3A::from(light.position);
+            let to_light = position - p;
+            let n_dot = n.dot(to_light);
+            if n_dot <= 0.0 {
+                continue; // the light is behind this side: no shadow ray needed
+            }
+            let distance = to_light.length();
+            let l = to_light / distance;
+            let origin = self.leave(&at.surface, n, l);
+            self.counts.shadow += 1;
+            let leaving = (at.entering || object.flat).then_some(at.primitive.object);
+            let visible = accel.light_reaching(light_index, position, origin, leaving, filters);
+            self.signature.shadow(visible);
+            if visible == Vec3A::ZERO {
+                continue;
+            }
+            let lit = visible * Vec3A::from(light.color);
+            diffuse += lit * base * (material.diffuse * n_dot / distance);
+            if material.specular > 0.0 {
+                let r = reflect(-l, n);
+                let r_dot_v = r.dot(-at.q.ray.dir).max(0.0);
+                // Outside the highlight the power is 0 (unless the exponent is 0 too).
+                if r_dot_v > 0.0 || material.shininess == 0.0 {
+                    specular += lit * (material.specular * r_dot_v.powf(material.shininess));
+                }
+            }
+        }
+        diffuse * opacity + specular
+    }
+}

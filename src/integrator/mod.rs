@@ -1,0 +1,241 @@
+//! The Whitted integrator: Phong shading with shadow rays at each hit (local_light.rs),
+//! plus recursive mirror-reflection (reflection.rs) and transmission (transmission.rs) rays.
+//! It asks the acceleration layer two questions, the nearest hit and the light reaching a
+//! point, and reads materials and lights from the appearance.
+
+mod local_light;
+mod path;
+mod reflection;
+mod signature;
+mod transmission;
+
+pub use signature::Signature;
+
+use crate::accel::{Accelerator, Hit, Primitive, Reach};
+use crate::appearance::{Appearance, Material};
+use crate::geometry::{Ray, RayQuery, SurfacePoint};
+use crate::numerics::offset_ray_origin;
+use crate::scene::{Geometry, PreparedScene};
+use glam::{Vec3, Vec3A};
+use path::Path;
+
+/// Rays traced, by kind.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct RayCounts {
+    /// From the camera.
+    pub primary: u64,
+    /// Towards lights.
+    pub shadow: u64,
+    /// Reflected and transmitted.
+    pub secondary: u64,
+}
+
+impl RayCounts {
+    /// Every ray, of any kind.
+    pub fn total(&self) -> u64 {
+        self.primary + self.shadow + self.secondary
+    }
+}
+
+impl std::ops::Add for RayCounts {
+    type Output = RayCounts;
+    fn add(self, o: RayCounts) -> RayCounts {
+        RayCounts {
+            primary: self.primary + o.primary,
+            shadow: self.shadow + o.shadow,
+            secondary: self.secondary + o.secondary,
+        }
+    }
+}
+
+impl std::ops::AddAssign for RayCounts {
+    fn add_assign(&mut self, o: RayCounts) {
+        *self = *self + o;
+    }
+}
+
+/// What one primary ray found.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sample {
+    /// The colour it brings back, unclamped.
+    pub color: Vec3,
+    /// What its whole tree met ([`Signature`]).
+    pub signature: u32,
+}
+
+/// How secondary rays avoid re-hitting the surface they start on.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub enum SelfIntersection {
+    /// Offset by the hit point's own error bound (numerics.rs): scale-independent.
+    #[default]
+    ErrorBound,
+    /// Offset along the normal by a fixed distance, as most simple tracers do; kept to
+    /// measure what the robust method buys (docs/numerics.md).
+    FixedEpsilon(f32),
+}
+
+/// Traces rays through one prepared scene.
+pub struct Integrator<'a> {
+    geometry: &'a Geometry,
+    appearance: &'a Appearance,
+    self_intersection: SelfIntersection,
+    /// A secondary ray whose contribution to the pixel is weighted below this is not traced.
+    /// 0 traces everything (the reference); 1/512 cannot change an 8-bit pixel by more than
+    /// rounding.
+    min_weight: f32,
+    /// Rays traced so far, by kind.
+    pub counts: RayCounts,
+    /// What the primary ray being traced has met.
+    signature: Signature,
+}
+
+/// What shading knows at a hit.
+struct Shading<'s> {
+    /// The ray that arrived.
+    q: &'s RayQuery,
+    hit: &'s Hit,
+    primitive: &'s Primitive,
+    material: &'s Material,
+    surface: SurfacePoint,
+    /// Whether the ray arrives from the side the surface normal faces.
+    entering: bool,
+    /// The normal of the side the ray arrives on.
+    n: Vec3A,
+}
+
+impl<'a> Integrator<'a> {
+    /// An integrator that skips secondary rays weighted below `min_weight`.
+    pub fn new(scene: &'a PreparedScene, min_weight: f32) -> Self {
+        Self {
+            geometry: &scene.geometry,
+            appearance: &scene.appearance,
+            self_intersection: SelfIntersection::default(),
+            min_weight,
+            counts: RayCounts::default(),
+            signature: Signature::default(),
+        }
+    }
+
+    /// Chooses how secondary rays leave a surface.
+    pub fn with_self_intersection(mut self, policy: SelfIntersection) -> Self {
+        self.self_intersection = policy;
+        self
+    }
+
+    #[inline]
+    fn accel(&self) -> &'a Accelerator {
+        self.geometry.accel()
+    }
+
+    /// Where a ray leaving `surface` towards `w` starts.
+    #[inline]
+    fn leave(&self, surface: &SurfacePoint, n: Vec3A, w: Vec3A) -> Vec3A {
+        match self.self_intersection {
+            SelfIntersection::ErrorBound => offset_ray_origin(surface.point, surface.error, n, w),
+            SelfIntersection::FixedEpsilon(eps) => {
+                let side = if w.dot(n) < 0.0 { -eps } else { eps };
+                surface.point + n * side
+            }
+        }
+    }
+
+    /// The colour seen along a primary ray (`ray()`, of unit direction) and its signature;
+    /// `reach` is what the camera view knows it can hit first
+    /// ([`crate::accel::CameraView::reach`]). A ray known to hit nothing is not built.
+    #[inline]
+    pub fn trace_primary(&mut self, reach: Reach, ray: impl FnOnce() -> Ray) -> Sample {
+        self.counts.primary += 1;
+        self.signature = Signature::default();
+        let color = match reach {
+            Reach::Among([]) => self.miss(),
+            reach => {
+                let q = RayQuery::new(ray());
+                match self.accel().nearest_hit(&q, reach) {
+                    Some(hit) => self.shade(&q, &hit, Path::PRIMARY),
+                    None => self.miss(),
+                }
+            }
+        };
+        Sample {
+            color: color.into(),
+            signature: self.signature.value(),
+        }
+    }
+
+    /// The colour along `q` beyond distance `t_min`. `inside` names the isolated solid
+    /// ([`Accelerator::isolated_solid`]) the ray starts in, if any: its next hit is then on
+    /// that solid, found without the BVH.
+    fn trace(&mut self, q: &RayQuery, t_min: f32, inside: Option<u32>, path: Path) -> Vec3A {
+        let reach = match inside {
+            Some(solid) => Reach::Inside { solid, t_min },
+            None => Reach::After(t_min),
+        };
+        match self.accel().nearest_hit(q, reach) {
+            Some(hit) => self.shade(q, &hit, path),
+            None => self.miss(),
+        }
+    }
+
+    /// The colour of a ray that leaves the scene.
+    #[inline]
+    fn miss(&mut self) -> Vec3A {
+        self.signature.miss();
+        self.appearance.background()
+    }
+
+    /// The colour that ray `q` brings back from `hit`: the light at the surface, plus
+    /// what the reflected and transmitted rays bring. (The query and the hit are passed by
+    /// reference: moved by value, they were copied through the stack on every call.)
+    fn shade(&mut self, q: &RayQuery, hit: &Hit, path: Path) -> Vec3A {
+        self.signature
+            .surface(hit.primitive, hit.shape.detail.part());
+        let primitive = self.accel().primitive(hit.primitive);
+        let material = self.appearance.material(primitive.object);
+        let surface = primitive.shape.surface(q, &hit.shape);
+        let entering = q.ray.dir.dot(surface.normal) < 0.0;
+        let at = Shading {
+            q,
+            hit,
+            primitive,
+            material,
+            // Shade the side the ray arrives on.
+            n: if entering {
+                surface.normal
+            } else {
+                -surface.normal
+            },
+            surface,
+            entering,
+        };
+        let mut color = self.local_light(&at);
+
+        // Reflection and refraction spend a bounce; a straight crossing does not.
+        let bounces_left = path.depth < self.appearance.max_depth();
+        let reflects = self.reflects(material, path, bounces_left);
+        let transmits = self.transmits(material, path, bounces_left);
+        // The rays this hit spawns share what is left of the sample's budget evenly; when
+        // it cannot pay for them all, none is traced, as if the depth limit were reached.
+        let children = reflects as u32 + transmits as u32;
+        if children == 0 || path.budget < children {
+            return color;
+        }
+        let share = (path.budget - children) / children;
+        if reflects {
+            color += self.reflection(&at, path.bounce(material.reflectivity, share))
+                * material.reflectivity;
+        }
+        if transmits {
+            color += self.transmission(&at, path, share) * material.transparency;
+        }
+        color
+    }
+
+    /// The isolated solid a ray leaving the surface at `at` in direction `dir` starts in:
+    /// the surface's own object, when the ray goes inwards and the object is one.
+    #[inline]
+    fn inside(&self, at: &Shading, dir: Vec3A) -> Option<u32> {
+        self.accel()
+            .isolated_solid(at.primitive.object)
+            .filter(|_| dir.dot(at.surface.normal) < 0.0)
+    }
+}

@@ -1,0 +1,56 @@
+//! Transmission: light through a transparent surface, bent by Snell's law when the
+//! material has an index of refraction other than 1, else going on along the same ray.
+
+use super::path::{MAX_STRAIGHT_CROSSINGS, Path};
+use super::{Integrator, Shading};
+use crate::appearance::{Material, reflect, refract};
+use crate::geometry::{Ray, RayQuery};
+use glam::Vec3A;
+
+/// Whether light through `material` changes direction.
+#[inline]
+fn bends(material: &Material) -> bool {
+    matches!(material.eta, Some(eta) if eta != 1.0)
+}
+
+impl Integrator<'_> {
+    /// Whether a hit on `material` along `path` spawns a transmitted ray: it is
+    /// transparent, the ray would weigh enough to matter, and a bent ray has a bounce left
+    /// (a straight one, a crossing left).
+    #[inline]
+    pub(super) fn transmits(&self, material: &Material, path: Path, bounces_left: bool) -> bool {
+        let transparency = material.transparency;
+        transparency > 0.0
+            && path.weight * transparency >= self.min_weight
+            && if bends(material) {
+                bounces_left
+            } else {
+                path.straight < MAX_STRAIGHT_CROSSINGS
+            }
+    }
+
+    /// The light the transmitted ray from `at` brings back (before the transparency scales
+    /// it); its subtree may spend `budget` rays.
+    #[inline]
+    pub(super) fn transmission(&mut self, at: &Shading, path: Path, budget: u32) -> Vec3A {
+        self.counts.secondary += 1;
+        let material = at.material;
+        let ray = at.q.ray;
+        if bends(material) {
+            let eta = material.eta.unwrap_or(1.0);
+            let ratio = if at.entering { 1.0 / eta } else { eta };
+            // Past the critical angle the transmitted light is reflected inside.
+            let dir = refract(ray.dir, at.n, ratio).unwrap_or_else(|| reflect(ray.dir, at.n));
+            let origin = self.leave(&at.surface, at.n, dir);
+            let q = RayQuery::new(Ray::new(origin, dir));
+            let inside = self.inside(at, dir);
+            self.trace(&q, 0.0, inside, path.bounce(material.transparency, budget))
+        } else {
+            // Unbent light goes on along the very same ray, past this hit: exact, so an
+            // eta-1 clear object leaves the image untouched.
+            let inside = self.inside(at, ray.dir);
+            let path = path.straight_on(material.transparency, budget);
+            self.trace(at.q, at.hit.shape.t, inside, path)
+        }
+    }
+}

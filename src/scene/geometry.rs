@@ -1,0 +1,160 @@
+//! A scene's geometry as the tracer runs it: its shapes flattened into primitives under the
+//! acceleration layer, and what shading needs to know of each object's shape. Built when
+//! geometry changes, and never for an appearance edit.
+
+use super::description::{Scene, ShapeDesc};
+use crate::accel::{AccelOptions, Accelerator, Primitive};
+use crate::geometry::{Cylinder, Shape, Sphere, Triangle};
+use glam::{Vec3, Vec3A};
+
+/// What shading needs to know about the shape of the object a primitive belongs to.
+#[derive(Clone, Debug)]
+pub struct ObjectGeometry {
+    /// The object's name, as the scene file gives it.
+    pub name: String,
+    /// Procedural textures are evaluated relative to this point.
+    pub origin: Vec3A,
+    /// For polygons: (u, v) in [0, 1] over the polygon's extent in its own plane.
+    pub planar_uv: Option<PlanarUv>,
+    /// A polygon or triangle: no inside, so both its sides face out. (A polygon file is
+    /// planar within 10⁻⁴ of its extent, file.rs; a fold that small shadowing itself would be
+    /// acne, not something to draw.)
+    pub flat: bool,
+}
+
+/// Texture coordinates over a polygon's extent in its own plane.
+#[derive(Clone, Copy, Debug)]
+pub struct PlanarUv {
+    origin: Vec3A,
+    u_axis: Vec3A,
+    v_axis: Vec3A,
+}
+
+impl PlanarUv {
+    fn new(vertices: &[Vec3], normal: Vec3) -> Self {
+        let u_dir = (vertices[1] - vertices[0]).normalize();
+        let v_dir = normal.cross(u_dir);
+        let (mut lo, mut hi) = (glam::Vec2::splat(f32::MAX), glam::Vec2::splat(f32::MIN));
+        for &p in vertices {
+            let q = glam::Vec2::new((p - vertices[0]).dot(u_dir), (p - vertices[0]).dot(v_dir));
+            lo = lo.min(q);
+            hi = hi.max(q);
+        }
+        let size = hi - lo;
+        Self {
+            origin: (vertices[0] + u_dir * lo.x + v_dir * lo.y).into(),
+            u_axis: (u_dir / size.x).into(),
+            v_axis: (v_dir / size.y).into(),
+        }
+    }
+
+    /// (u, v) of point `p` in the polygon's plane.
+    #[inline]
+    pub fn uv(&self, p: Vec3A) -> (f32, f32) {
+        let d = p - self.origin;
+        (d.dot(self.u_axis), d.dot(self.v_axis))
+    }
+}
+
+/// The primitives of a scene's objects, the acceleration layer over them, and each object's
+/// shape data.
+#[derive(Clone, Debug)]
+pub struct Geometry {
+    accel: Accelerator,
+    objects: Vec<ObjectGeometry>,
+}
+
+impl Geometry {
+    /// Flattens `scene`'s shapes and builds the acceleration layer with `options`.
+    pub fn new(scene: &Scene, options: AccelOptions) -> Self {
+        let mut primitives = Vec::new();
+        let mut objects = Vec::with_capacity(scene.objects.len());
+        for (index, object) in scene.objects.iter().enumerate() {
+            let id = index as u32;
+            let mut planar_uv = None;
+            let mut push = |shape| primitives.push(Primitive { shape, object: id });
+            match &object.shape {
+                ShapeDesc::Sphere { center, radius } => {
+                    push(Shape::Sphere(Sphere::new(*center, *radius)))
+                }
+                ShapeDesc::Cylinder {
+                    base,
+                    radius,
+                    height,
+                } => push(Shape::Cylinder(Cylinder::new(*base, *radius, *height))),
+                ShapeDesc::Triangle {
+                    vertices: [a, b, c],
+                } => push(Shape::Triangle(
+                    Triangle::new(*a, *b, *c).expect("validated"),
+                )),
+                ShapeDesc::Polygon { vertices } => {
+                    let normal = (vertices[1] - vertices[0])
+                        .cross(vertices[2] - vertices[1])
+                        .normalize();
+                    planar_uv = Some(PlanarUv::new(vertices, normal));
+                    for i in 1..vertices.len() - 1 {
+                        if let Some(t) = Triangle::new(vertices[0], vertices[i], vertices[i + 1]) {
+                            push(Shape::Triangle(t));
+                        }
+                    }
+                }
+                ShapeDesc::Tetrahedron { vertices } => {
+                    let centroid = vertices.iter().sum::<Vec3>() / 4.0;
+                    for skip in 0..4 {
+                        let mut face = [Vec3::ZERO; 3];
+                        let mut k = 0;
+                        for (i, v) in vertices.iter().enumerate() {
+                            if i != skip {
+                                face[k] = *v;
+                                k += 1;
+                            }
+                        }
+                        let mut tri = Triangle::new(face[0], face[1], face[2]).expect("validated");
+                        // Wind every face so its normal points away from the inside.
+                        if tri.normal.dot((face[0] - centroid).into()) < 0.0 {
+                            tri = Triangle::new(face[0], face[2], face[1]).expect("validated");
+                        }
+                        push(Shape::Triangle(tri));
+                    }
+                }
+            }
+            objects.push(ObjectGeometry {
+                name: object.name.clone(),
+                origin: object.shape.origin().into(),
+                planar_uv,
+                flat: matches!(
+                    object.shape,
+                    ShapeDesc::Polygon { .. } | ShapeDesc::Triangle { .. }
+                ),
+            });
+        }
+        let lights: Vec<Vec3> = scene.lights.iter().map(|l| l.position).collect();
+        let accel = Accelerator::build(primitives, objects.len(), &lights, options);
+        Self { accel, objects }
+    }
+
+    /// The acceleration layer: the primitives and how to find what rays meet.
+    #[inline]
+    pub fn accel(&self) -> &Accelerator {
+        &self.accel
+    }
+
+    /// Object `object`'s shape data.
+    #[inline]
+    pub fn object(&self, object: u32) -> &ObjectGeometry {
+        &self.objects[object as usize]
+    }
+
+    /// Every object's shape data, in the scene's order.
+    pub fn objects(&self) -> &[ObjectGeometry] {
+        &self.objects
+    }
+
+    /// The index of the object named `name`, if there is one.
+    pub fn find(&self, name: &str) -> Option<u32> {
+        self.objects
+            .iter()
+            .position(|o| o.name == name)
+            .map(|i| i as u32)
+    }
+}
