@@ -9,8 +9,11 @@ use glam::{Vec3, Vec3A};
 /// towards +x.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Camera {
+    /// Where the camera stands, relative to the scene's origin.
     pub eye: Vec3,
+    /// Turn about `up`, in degrees, positive to the right.
     pub yaw: f32,
+    /// Elevation above the plane perpendicular to `up`, in degrees.
     pub pitch: f32,
     /// Vertical field of view.
     pub vfov: f32,
@@ -18,7 +21,7 @@ pub struct Camera {
     pub up: Vec3,
 }
 
-use crate::limits::MAX_PITCH;
+use crate::limits::{MAX_COORDINATE, MAX_PITCH, PITCH, VFOV};
 
 impl Camera {
     /// A camera at `eye` looking along `direction` with +y up; None when `direction` has
@@ -47,6 +50,38 @@ impl Camera {
         })
     }
 
+    /// The rules every camera follows, whether a file, an edit or the mouse set it: the
+    /// eye finite and within reach of the scene's origin (like every position), `up` a unit
+    /// vector, pitch and field of view within limits.rs's ranges. The message names the
+    /// value that breaks one.
+    pub fn check(&self) -> Result<(), String> {
+        if !self.eye.is_finite() || self.eye.abs().max_element() as f64 > MAX_COORDINATE {
+            return Err(format!(
+                "eye {} must be finite and within ±{MAX_COORDINATE:e}",
+                self.eye
+            ));
+        }
+        if !self.up.is_finite() || (self.up.length() - 1.0).abs() > 1e-3 {
+            return Err(format!("up {} must be a unit vector", self.up));
+        }
+        if !self.yaw.is_finite() {
+            return Err(format!("yaw {} must be a finite number", self.yaw));
+        }
+        if !PITCH.contains(&self.pitch) {
+            let (lo, hi) = (PITCH.start(), PITCH.end());
+            return Err(format!("pitch {} must lie in {lo}..{hi}°", self.pitch));
+        }
+        if !VFOV.contains(&self.vfov) {
+            let (lo, hi) = (VFOV.start(), VFOV.end());
+            return Err(format!(
+                "field of view {} must lie in {lo}..{hi}°",
+                self.vfov
+            ));
+        }
+        Ok(())
+    }
+
+    /// The unit direction the camera looks in.
     pub fn forward(&self) -> Vec3 {
         let (reference, side) = reference_frame(self.up);
         let (sy, cy) = self.yaw.to_radians().sin_cos();
@@ -54,6 +89,7 @@ impl Camera {
         (reference * cy + side * sy) * cp + self.up * sp
     }
 
+    /// The unit direction to the right on screen.
     pub fn right(&self) -> Vec3 {
         let (reference, side) = reference_frame(self.up);
         let (sy, cy) = self.yaw.to_radians().sin_cos();
@@ -136,6 +172,7 @@ impl CameraRays {
         self.origin.into()
     }
 
+    /// The unit direction of the centre of the view.
     pub fn forward(&self) -> Vec3 {
         self.forward.into()
     }

@@ -4,6 +4,8 @@
 //! accumulator, and writes images. The `prism` binary adds the command line, the
 //! interactive viewer and the bench on top.
 
+#![warn(missing_docs)]
+
 pub mod accel;
 pub mod appearance;
 pub mod camera;
@@ -16,4 +18,4 @@ pub mod render;
 pub mod sampler;
 pub mod scene;
 pub mod seed;
-pub mod simd;
+mod simd;

@@ -43,6 +43,12 @@ pub const VFOV: RangeInclusive<f32> = 0.01..=179.0;
 /// degrees: short of straight up or down, where yaw would lose its meaning.
 pub const MAX_PITCH: f32 = 89.0;
 
+/// The camera's pitch, in degrees (file, panel, mouse look).
+pub const PITCH: RangeInclusive<f32> = -MAX_PITCH..=MAX_PITCH;
+
+/// Fractions of light: a material's reflectivity and transparency.
+pub const FRACTION: RangeInclusive<f32> = 0.0..=1.0;
+
 /// Reflectances (a material's colour, a texture's colours, a texel): a surface returns
 /// at most the light it receives.
 pub const REFLECTANCE: RangeInclusive<f32> = 0.0..=1.0;
@@ -58,9 +64,9 @@ pub const MAX_PHONG_FACTOR: f32 = 1.0e3;
 /// The Phong exponent; past this the highlight is narrower than f32 can resolve.
 pub const MAX_SHININESS: f32 = 1.0e4;
 
-/// The most reflection or refraction bounces along one path (the scene file's
-/// `max_depth`, `--max-depth`).
-pub const MAX_DEPTH: u32 = 64;
+/// Reflection or refraction bounces along one path (the scene file's `max_depth`,
+/// `--max-depth`).
+pub const DEPTH: RangeInclusive<u32> = 0..=64;
 
 /// The most secondary rays (reflected, refracted, passed straight through) one camera ray
 /// may spawn, shared evenly between the branches of its tree (integrator.rs). A surface
@@ -78,18 +84,26 @@ pub const RENDER_STACK_BYTES: usize = 32 << 20;
 /// and memory that grow with their square.
 pub const LISTINGS_PER_PRIMITIVE: u64 = 64;
 
-/// The most anti-aliasing level (N × N subsamples per pixel).
-pub const MAX_AA: u32 = 8;
+/// Anti-aliasing levels N (N × N subsamples per pixel): file, flags, panel.
+pub const AA: RangeInclusive<u32> = 1..=8;
 
-/// The largest image width or height.
-pub const MAX_IMAGE_SIDE: u32 = 16384;
+/// An image's width or height, in pixels: file, flags, settings.
+pub const IMAGE_SIDE: RangeInclusive<u32> = 1..=16384;
+
+/// Adaptive sampling's tolerance: the estimated error of a pixel's mean luminance at which
+/// it stops, on the 0..1 scale (flags, panel). Below the lower end no pixel would stop
+/// before the grid is full; above the upper, an image would stop at its first samples.
+pub const ADAPTIVE_TOLERANCE: RangeInclusive<f32> = 1e-4..=0.5;
+
+/// Adaptive sampling's least edge contrast worth refining beside (0..1, any channel).
+pub const EDGE_CONTRAST: RangeInclusive<f32> = 0.0..=1.0;
 
 /// The largest window side the viewer opens (image plus panel); graphics drivers commonly
 /// refuse surfaces beyond it.
 pub const MAX_WINDOW_SIDE: u32 = 8192;
 
-/// The most worker threads a render may use.
-pub const MAX_THREADS: usize = 256;
+/// Worker threads a render may use (`--threads`).
+pub const THREADS: RangeInclusive<u16> = 1..=256;
 
 /// Names from a scene file are shown in messages at most this many characters long.
 pub const MAX_NAME_CHARS: usize = 60;

@@ -37,10 +37,12 @@ impl Sampler {
         }
     }
 
+    /// The anti-aliasing level N.
     pub fn level(&self) -> u32 {
         self.n
     }
 
+    /// Where the subsamples lie in their cells.
     pub fn layout(&self) -> SampleLayout {
         self.layout
     }

@@ -1,7 +1,7 @@
 //! The seed scene, built into the library with its texture, so that an installed prism
 //! opens it from any folder without the source tree.
 
-use crate::scene::file::{Assets, parse_scene_with};
+use crate::scene::{Assets, parse_scene_with};
 use crate::scene::{Scene, SceneError};
 use std::path::Path;
 

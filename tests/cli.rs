@@ -256,9 +256,13 @@ fn zero_length_camera_direction_is_rejected() {
 #[test]
 fn bad_image_settings_are_rejected() {
     let case = Case::new();
-    case.fails_with(GOOD, &["--width", "0"], &["width and height"]);
-    case.fails_with(GOOD, &["--aa", "9"], &["anti-aliasing level 9"]);
-    case.fails_with(GOOD, &["--aa", "0"], &["anti-aliasing level 0"]);
+    // The flags take their ranges from limits.rs, and say them.
+    case.fails_with(GOOD, &["--width", "0"], &["--width", "1..=16384"]);
+    case.fails_with(GOOD, &["--aa", "9"], &["--aa", "9 is not in 1..=8"]);
+    case.fails_with(GOOD, &["--aa", "0"], &["--aa", "0 is not in 1..=8"]);
+    // The scene file's suggestion is checked by the same rule.
+    let large = GOOD.replace("[[lights]]", "[render]\nwidth = 40\naa = 8\n\n[[lights]]");
+    case.fails_with(&large.replace("aa = 8", "aa = 9"), &[], &["`aa`", "1..=8"]);
 }
 
 #[test]
@@ -309,7 +313,11 @@ fn non_finite_and_extreme_numbers_are_rejected() {
         &[],
         &["center", "finite"],
     );
-    case.fails_with(GOOD, &["--width", "100000"], &["at most 16384"]);
+    case.fails_with(
+        GOOD,
+        &["--width", "100000"],
+        &["100000 is not in 1..=16384"],
+    );
     case.fails_with(GOOD, &["--adaptive", "--tolerance", "nan"], &["tolerance"]);
     case.fails_with(GOOD, &["--adaptive", "--tolerance", "-1"], &["tolerance"]);
     case.fails_with(

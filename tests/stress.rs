@@ -7,7 +7,7 @@ use glam::{DVec3, Vec3};
 use prism::appearance::Material;
 use prism::geometry::{Cylinder, Ray, RayQuery, Sphere, Triangle};
 use prism::integrator::{Integrator, SelfIntersection};
-use prism::render::compare::fraction_differing as differing;
+use prism::render::fraction_differing as differing;
 use prism::render::{self, RenderSettings};
 use prism::scene::{PreparedScene, Scene, SceneObject, ShapeDesc, load_scene};
 use proptest::prelude::*;

@@ -7,7 +7,7 @@
 //! Needs xvfb-run, xdotool and ImageMagick (`.ci/run` installs them). Without them the test
 //! says so and passes, unless PRISM_REQUIRE_WINDOW_TEST is set, as it is in CI.
 
-use prism::render::compare::fraction_differing as differing;
+use prism::render::fraction_differing as differing;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 

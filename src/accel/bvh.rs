@@ -178,8 +178,10 @@ struct Pending {
     count: u32,
 }
 
+/// The wide BVH over a scene's primitives (in their stored order).
 #[derive(Clone, Debug, Default)]
 pub struct Bvh {
+    /// The nodes; the root is the first.
     pub nodes: Vec<WideNode>,
     /// The box around every primitive.
     pub bounds: Option<Aabb>,

@@ -176,10 +176,14 @@ impl FirstHitTiles {
     }
 }
 
+/// How a view's first-hit tiles are spent (for tests and the bench).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct TileCensus {
+    /// Tiles in all.
     pub tiles: usize,
+    /// Tiles that no box covers: background without a test.
     pub empty: usize,
+    /// Tiles covered by too many boxes, left to the BVH.
     pub crowded: usize,
     /// Candidates summed over the tiles that are not crowded.
     pub candidates: usize,

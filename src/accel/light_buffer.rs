@@ -280,10 +280,14 @@ impl LightBuffer {
     }
 }
 
+/// How a light buffer's cells are spent (for tests and the bench).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct LightBufferCensus {
+    /// Cells in all.
     pub cells: usize,
+    /// Cells that see no box: lit without a test.
     pub empty: usize,
+    /// Cells that see too many boxes, left to the BVH.
     pub crowded: usize,
 }
 

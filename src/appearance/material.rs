@@ -9,11 +9,15 @@ use glam::{Vec3, Vec3A};
 /// Colour = (1 − transparency)·local + reflectivity·reflected + transparency·transmitted.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Material {
+    /// The surface colour: a solid colour, a pattern or an image.
     pub texture: Texture,
     /// Multiplies the scene's ambient light.
     pub ambient: f32,
+    /// Multiplies the light arriving straight from the lights.
     pub diffuse: f32,
+    /// Strength of the Phong highlight.
     pub specular: f32,
+    /// Phong exponent: the larger, the smaller and sharper the highlight.
     pub shininess: f32,
     /// Fraction of the mirror-reflected light added, 0..1.
     pub reflectivity: f32,

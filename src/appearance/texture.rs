@@ -8,7 +8,9 @@ use std::sync::Arc;
 /// An RGB image held as 8-bit texels, looked up with bilinear filtering.
 #[derive(Debug, PartialEq)]
 pub struct ImageTexture {
+    /// Width in texels.
     pub width: u32,
+    /// Height in texels.
     pub height: u32,
     /// Three bytes per texel, rows top to bottom: the decoder's own buffer, kept as it is.
     texels: Vec<u8>,
@@ -17,24 +19,44 @@ pub struct ImageTexture {
 /// Why an image file cannot be a texture.
 #[derive(Debug, thiserror::Error)]
 pub enum TextureError {
+    /// The file cannot be read (the cause, in words).
     #[error("{0}")]
     Io(String),
+    /// A directory, a FIFO or a device.
     #[error("it is not a regular file")]
     NotAFile,
     #[error(
         "the file holds {bytes} bytes, more than the {} a texture may have",
         crate::limits::MAX_TEXTURE_FILE_BYTES
     )]
-    FileTooLarge { bytes: u64 },
+    /// Larger than a texture file may be.
+    FileTooLarge {
+        /// Its size in bytes.
+        bytes: u64,
+    },
     #[error(
         "it is {width}×{height} texels, more than the {} (8192×8192) a texture may have",
         crate::limits::MAX_TEXTURE_TEXELS
     )]
-    TooManyTexels { width: u32, height: u32 },
+    /// More texels than a texture may have.
+    TooManyTexels {
+        /// The width asked for.
+        width: u32,
+        /// The height asked for.
+        height: u32,
+    },
+    /// No texels at all.
     #[error("it is {width}×{height} texels; an image needs at least one")]
-    Empty { width: u32, height: u32 },
+    Empty {
+        /// The width asked for.
+        width: u32,
+        /// The height asked for.
+        height: u32,
+    },
+    /// A JPEG stream without its end marker.
     #[error("the JPEG data ends early (the file is truncated)")]
     Truncated,
+    /// The decoder refused the data (its message).
     #[error("{0}")]
     Decode(String),
 }
@@ -232,24 +254,33 @@ fn floor_to_int(x: f32) -> i64 {
 /// world origin); images on the shape's (u, v).
 #[derive(Clone, Debug, PartialEq)]
 pub enum Texture {
+    /// One colour everywhere.
     Solid(Vec3),
     /// Cells of edge `size` alternating between two colours; only the axes whose mask
     /// component is 1 take part (a floor uses x and z, so rounding in y cannot flip a cell).
     Checker {
+        /// The two colours, alternating.
         colors: [Vec3; 2],
+        /// The edge of a cell, in scene units.
         size: f32,
+        /// 1 for each axis that takes part, else 0.
         axes: Vec3,
     },
     /// Bands of width `width` across the unit `direction`.
     Stripes {
+        /// The two colours, alternating.
         colors: [Vec3; 2],
+        /// The width of a band, in scene units.
         width: f32,
+        /// The unit direction across the bands.
         direction: Vec3,
     },
+    /// An image, looked up at the shape's (u, v).
     Image(Arc<ImageTexture>),
 }
 
 impl Texture {
+    /// The colour at texture coordinates `uv` (images) or at `local`, the point relative to the object's origin (patterns).
     #[inline]
     pub fn eval(&self, uv: (f32, f32), local: Vec3A) -> Vec3A {
         match self {

@@ -233,7 +233,7 @@ fn reference(
         .flat_map(|v| [v.x, v.y, v.z])
         .flat_map(f32::to_le_bytes)
         .collect();
-    prism::render::output::write_bytes(&cache, &bytes)?;
+    prism::render::write_bytes(&cache, &bytes)?;
     eprintln!(
         "reference: {} subsamples per pixel in {:.1} s, cached {}",
         size.reference_aa * size.reference_aa,
@@ -246,7 +246,7 @@ fn reference(
 fn to_rgb8(means: &[Vec3], width: u32, height: u32) -> Vec<u8> {
     let mut v = Vec::with_capacity(means.len() * 3);
     for m in means {
-        v.extend_from_slice(&prism::render::accumulator::to_8bit(*m));
+        v.extend_from_slice(&prism::render::to_8bit(*m));
     }
     debug_assert_eq!(v.len(), (width * height * 3) as usize);
     v
@@ -276,7 +276,7 @@ fn write_csv(path: &Path, points: &[Point]) -> Result<()> {
             p.strategy, p.passes, p.samples_per_pixel, p.seconds, p.rmse, p.flip
         )?;
     }
-    prism::render::output::write_bytes(path, csv.as_bytes())?;
+    prism::render::write_bytes(path, csv.as_bytes())?;
     Ok(())
 }
 

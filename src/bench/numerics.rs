@@ -4,7 +4,7 @@ use anyhow::Result;
 use glam::{DVec3, Vec3};
 use prism::geometry::{Ray, Sphere};
 use prism::integrator::SelfIntersection;
-use prism::render::compare::fraction_differing;
+use prism::render::fraction_differing;
 use prism::render::{self, RenderSettings};
 use prism::scene::{PreparedScene, Scene};
 use std::fmt::Write;

@@ -25,18 +25,29 @@ pub enum Command {
     Bench(crate::bench::BenchArgs),
 }
 
+/// A parser of flags that take an integer in `range` (a bound from prism::limits), so
+/// that the command line refuses exactly what the renderer refuses.
+pub fn within<T>(range: std::ops::RangeInclusive<T>) -> clap::builder::RangedI64ValueParser<T>
+where
+    T: Copy + Into<i64> + TryFrom<i64> + Clone + Send + Sync + 'static,
+    <T as TryFrom<i64>>::Error: std::error::Error + Send + Sync + 'static,
+{
+    clap::builder::RangedI64ValueParser::<T>::new()
+        .range((*range.start()).into()..=(*range.end()).into())
+}
+
 #[derive(clap::Args, Debug, Default)]
 pub struct ViewArgs {
     /// Scene file (TOML); the seed scene when omitted.
     pub scene: Option<PathBuf>,
     /// Initial window width of the image area, in pixels.
-    #[arg(long)]
+    #[arg(long, value_parser = within(prism::limits::IMAGE_SIDE))]
     pub width: Option<u32>,
     /// Initial window height, in pixels.
-    #[arg(long)]
+    #[arg(long, value_parser = within(prism::limits::IMAGE_SIDE))]
     pub height: Option<u32>,
     /// Anti-aliasing level N (N×N subsamples per pixel, 1..8).
-    #[arg(long)]
+    #[arg(long, value_parser = within(prism::limits::AA))]
     pub aa: Option<u32>,
     /// Where screenshots are saved (default: the working directory).
     #[arg(long, value_name = "DIR")]
@@ -68,7 +79,7 @@ fn exit_on_signals() -> Result<()> {
         .name("prism-signals".into())
         .spawn(move || {
             if let Some(signal) = signals.forever().next() {
-                prism::render::output::remove_pending_files();
+                prism::render::remove_pending_files();
                 let name = match signal {
                     SIGINT => "SIGINT",
                     SIGTERM => "SIGTERM",
@@ -113,4 +124,58 @@ pub fn exit_code(error: &anyhow::Error) -> u8 {
         .chain()
         .any(|e| e.is::<SceneError>() || e.is::<SettingsError>() || e.is::<OutputError>());
     if bad_input { 2 } else { 1 }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use prism::limits::{AA, DEPTH, IMAGE_SIDE, THREADS};
+
+    /// Whether `prism <args>` parses.
+    fn parses(args: &[&str]) -> bool {
+        Args::try_parse_from(std::iter::once("prism").chain(args.iter().copied())).is_ok()
+    }
+
+    /// Every integer flag takes exactly its range from limits.rs: both ends, and nothing
+    /// one beyond either.
+    #[test]
+    fn every_ranged_flag_takes_exactly_its_limit() {
+        let side = (*IMAGE_SIDE.start() as i64, *IMAGE_SIDE.end() as i64);
+        let aa = (*AA.start() as i64, *AA.end() as i64);
+        let threads = (*THREADS.start() as i64, *THREADS.end() as i64);
+        let depth = (*DEPTH.start() as i64, *DEPTH.end() as i64);
+        let flags = [
+            ("render", "--width", side),
+            ("render", "--height", side),
+            ("render", "--aa", aa),
+            ("render", "--threads", threads),
+            ("render", "--max-depth", depth),
+            ("view", "--width", side),
+            ("view", "--height", side),
+            ("view", "--aa", aa),
+        ];
+        for (command, flag, (lo, hi)) in flags {
+            for (value, ok) in [(lo, true), (hi, true), (lo - 1, false), (hi + 1, false)] {
+                let value = value.to_string();
+                assert_eq!(
+                    parses(&[command, flag, &value]),
+                    ok,
+                    "{command} {flag} {value}"
+                );
+            }
+        }
+    }
+
+    /// What the flags let through at their ends, the renderer accepts.
+    #[test]
+    fn the_settings_accept_the_flags_extremes() {
+        let defaults = prism::scene::RenderDefaults::default();
+        for side in [*IMAGE_SIDE.start(), *IMAGE_SIDE.end()] {
+            for aa in [*AA.start(), *AA.end()] {
+                let s = RenderSettings::for_scene(&defaults, Some(side), Some(side), Some(aa));
+                assert!(s.is_ok(), "{side} {aa}");
+            }
+        }
+        assert!(prism::render::thread_pool(Some(*THREADS.end() as usize)).is_ok());
+    }
 }

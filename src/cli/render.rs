@@ -2,7 +2,7 @@
 
 use anyhow::{Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
-use prism::render::output::ImageFormat;
+use prism::render::ImageFormat;
 use prism::render::{AdaptiveSettings, PendingFile, RenderSettings};
 use prism::sampler::SampleLayout;
 use prism::scene::PreparedScene;
@@ -14,24 +14,24 @@ use std::time::Instant;
 pub struct RenderArgs {
     /// Scene file (TOML); the seed scene when omitted.
     pub scene: Option<PathBuf>,
-    /// Image width in pixels (default: the scene's, else 800).
-    #[arg(long)]
+    /// Image width in pixels, 1..16384 (default: the scene's, else 800).
+    #[arg(long, value_parser = super::within(prism::limits::IMAGE_SIDE))]
     pub width: Option<u32>,
-    /// Image height in pixels (default: the scene's, else 600).
-    #[arg(long)]
+    /// Image height in pixels, 1..16384 (default: the scene's, else 600).
+    #[arg(long, value_parser = super::within(prism::limits::IMAGE_SIDE))]
     pub height: Option<u32>,
     /// Anti-aliasing level N: N×N subsamples per pixel, 1..8 (default: the scene's).
-    #[arg(long)]
+    #[arg(long, value_parser = super::within(prism::limits::AA))]
     pub aa: Option<u32>,
     /// Output PNG file (a symbolic link's target is replaced; a device or FIFO is written
     /// to directly).
     #[arg(long, short, default_value = "render.png")]
     pub out: PathBuf,
     /// Worker threads, 1..256 (default: all cores).
-    #[arg(long, value_parser = clap::value_parser!(u16).range(1..=prism::limits::MAX_THREADS as i64))]
+    #[arg(long, value_parser = super::within(prism::limits::THREADS))]
     pub threads: Option<u16>,
     /// Most reflection/refraction bounces, 0..64 (default: the scene's, else 5).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(0..=prism::limits::MAX_DEPTH as i64))]
+    #[arg(long, value_parser = super::within(prism::limits::DEPTH))]
     pub max_depth: Option<u32>,
     /// Subsample positions: stratified (jittered in each cell) or grid (cell centres).
     #[arg(long, value_enum, default_value = "stratified")]

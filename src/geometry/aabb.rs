@@ -2,22 +2,28 @@
 
 use glam::Vec3;
 
+/// An axis-aligned box.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Aabb {
+    /// The corner with the smallest coordinates.
     pub min: Vec3,
+    /// The corner with the largest coordinates.
     pub max: Vec3,
 }
 
 impl Aabb {
+    /// The box around nothing: growing it by a point gives that point.
     pub const EMPTY: Aabb = Aabb {
         min: Vec3::splat(f32::INFINITY),
         max: Vec3::splat(f32::NEG_INFINITY),
     };
 
+    /// The box around `points`.
     pub fn from_points(points: &[Vec3]) -> Self {
         points.iter().fold(Self::EMPTY, |b, &p| b.grow(p))
     }
 
+    /// The box grown to hold `p`.
     pub fn grow(self, p: Vec3) -> Self {
         Self {
             min: self.min.min(p),
@@ -25,6 +31,7 @@ impl Aabb {
         }
     }
 
+    /// The box around both.
     pub fn union(self, other: Aabb) -> Self {
         Self {
             min: self.min.min(other.min),
@@ -32,10 +39,12 @@ impl Aabb {
         }
     }
 
+    /// The box's centre.
     pub fn centroid(&self) -> Vec3 {
         (self.min + self.max) * 0.5
     }
 
+    /// Whether the box holds no point.
     pub fn is_empty(&self) -> bool {
         self.min.x > self.max.x
     }

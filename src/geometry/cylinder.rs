@@ -7,11 +7,14 @@ use crate::numerics::{gamma, stable_quadratic_roots};
 use glam::{Vec2, Vec3, Vec3A};
 use std::f32::consts::PI;
 
+/// An upright cylinder (along +y) closed by two caps.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Cylinder {
     /// Centre of the bottom cap.
     pub base: Vec3,
+    /// Radius of the side.
     pub radius: f32,
+    /// Height from the bottom cap to the top cap.
     pub height: f32,
 }
 
@@ -24,6 +27,7 @@ pub enum CylinderPart {
 }
 
 impl Cylinder {
+    /// The cylinder standing on `base` (the centre of its bottom cap).
     pub fn new(base: Vec3, radius: f32, height: f32) -> Self {
         Self {
             base,
@@ -159,6 +163,7 @@ impl Cylinder {
         (u, v.clamp(0.0, 1.0))
     }
 
+    /// The box around the cylinder.
     pub fn bounds(&self) -> Aabb {
         Aabb {
             min: self.base - Vec3::new(self.radius, 0.0, self.radius),

@@ -1,12 +1,12 @@
 //! Rays and the shapes they hit; finding which shape a ray hits is the acceleration
 //! layer's job (accel/).
 
-pub mod aabb;
-pub mod cylinder;
-pub mod ray;
-pub mod shape;
-pub mod sphere;
-pub mod triangle;
+mod aabb;
+mod cylinder;
+mod ray;
+mod shape;
+mod sphere;
+mod triangle;
 
 pub use aabb::Aabb;
 pub use cylinder::Cylinder;

@@ -10,11 +10,14 @@ use glam::Vec3A;
 /// those of `Vec3`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Ray {
+    /// Where the ray starts.
     pub origin: Vec3A,
+    /// Its direction (unit length for camera rays; a shadow ray's spans to the light).
     pub dir: Vec3A,
 }
 
 impl Ray {
+    /// A ray from `origin` along `dir`.
     #[inline]
     pub fn new(origin: impl Into<Vec3A>, dir: impl Into<Vec3A>) -> Self {
         Self {
@@ -23,6 +26,7 @@ impl Ray {
         }
     }
 
+    /// The point at distance parameter `t`.
     #[inline]
     pub fn at(&self, t: f32) -> Vec3A {
         self.origin + self.dir * t
@@ -33,7 +37,9 @@ impl Ray {
 /// per ray instead of once per primitive.
 #[derive(Clone, Copy, Debug)]
 pub struct RayQuery {
+    /// The ray itself.
     pub ray: Ray,
+    /// 1 / direction, per axis, for box tests.
     pub inv_dir: Vec3A,
     /// The axis along which `dir` is largest (z), and the two others in cyclic order (x, y;
     /// swapped so the triangle winding is preserved when `dir` points down that axis).
@@ -63,6 +69,7 @@ impl Axes {
 }
 
 impl RayQuery {
+    /// The query for `ray`, with what its intersection tests share precomputed.
     #[inline]
     pub fn new(ray: Ray) -> Self {
         let d = ray.dir;

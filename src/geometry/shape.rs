@@ -7,10 +7,14 @@ use super::sphere::Sphere;
 use super::triangle::{Triangle, TriangleHit};
 use glam::Vec3A;
 
+/// Every kind of shape a primitive can be (a closed set).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Shape {
+    /// A sphere.
     Sphere(Sphere),
+    /// A triangle (polygons and tetrahedra are made of these).
     Triangle(Triangle),
+    /// A capped cylinder.
     Cylinder(Cylinder),
 }
 
@@ -18,7 +22,9 @@ pub enum Shape {
 /// the nearest hit only.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ShapeHit {
+    /// The distance parameter along the ray.
     pub t: f32,
+    /// What else the shape needs to rebuild the surface point.
     pub detail: HitDetail,
 }
 
@@ -43,6 +49,7 @@ impl HitDetail {
 /// A point on a surface, as shading needs it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SurfacePoint {
+    /// The hit point.
     pub point: Vec3A,
     /// Per-coordinate bound on the distance of `point` from the true surface.
     pub error: Vec3A,
@@ -51,6 +58,7 @@ pub struct SurfacePoint {
 }
 
 impl Shape {
+    /// The nearest hit in (0, t_max).
     #[inline]
     pub fn intersect(&self, q: &RayQuery, t_max: f32) -> Option<ShapeHit> {
         self.intersect_after(q, 0.0, t_max)
@@ -88,6 +96,7 @@ impl Shape {
         }
     }
 
+    /// The surface point of `hit`, found by `intersect` along `q`.
     #[inline]
     pub fn surface(&self, q: &RayQuery, hit: &ShapeHit) -> SurfacePoint {
         match (self, hit.detail) {
@@ -130,6 +139,7 @@ impl Shape {
         }
     }
 
+    /// The box around the shape.
     pub fn bounds(&self) -> Aabb {
         match self {
             Shape::Sphere(s) => s.bounds(),

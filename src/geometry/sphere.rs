@@ -6,13 +6,17 @@ use crate::numerics::{gamma, stable_quadratic_roots};
 use glam::{Vec3, Vec3A};
 use std::f32::consts::PI;
 
+/// A sphere.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Sphere {
+    /// Its centre.
     pub center: Vec3A,
+    /// Its radius.
     pub radius: f32,
 }
 
 impl Sphere {
+    /// The sphere about `center` of radius `radius`.
     pub fn new(center: Vec3, radius: f32) -> Self {
         Self {
             center: center.into(),
@@ -111,6 +115,7 @@ impl Sphere {
         (u, v)
     }
 
+    /// The box around the sphere.
     pub fn bounds(&self) -> Aabb {
         let r = Vec3A::splat(self.radius);
         Aabb {

@@ -6,8 +6,10 @@ use super::ray::RayQuery;
 use crate::numerics::gamma;
 use glam::{Vec3, Vec3A};
 
+/// A triangle, with its normal precomputed.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Triangle {
+    /// Its corners, in winding order.
     pub p: [Vec3A; 3],
     /// Unit normal by the right-hand rule over p0, p1, p2.
     pub normal: Vec3A,
@@ -31,6 +33,7 @@ impl Triangle {
         })
     }
 
+    /// The nearest hit in (0, t_max), watertight (no ray passes between two triangles that share an edge).
     #[inline]
     pub fn intersect(&self, q: &RayQuery, t_max: f32) -> Option<TriangleHit> {
         self.intersect_after(q, 0.0, t_max)
@@ -122,6 +125,7 @@ impl Triangle {
         (point, error)
     }
 
+    /// The box around the triangle.
     pub fn bounds(&self) -> Aabb {
         Aabb::from_points(&self.p.map(Vec3::from))
     }

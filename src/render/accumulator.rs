@@ -5,10 +5,12 @@ use glam::Vec3;
 /// Running sums for one pixel.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct PixelSum {
+    /// Sum of the subsamples' colours.
     pub color: Vec3,
     /// Sum of the first `count / 2` subsamples when `count` is a power of two (taken when
     /// `count` reached half of it): the half-size estimate that `error_estimate` compares to.
     pub half: Vec3,
+    /// Subsamples summed.
     pub count: u32,
     /// The signature of the first subsample (integrator.rs).
     pub signature: u32,
@@ -17,6 +19,7 @@ pub struct PixelSum {
 }
 
 impl PixelSum {
+    /// Adds one subsample of colour `c` and signature `signature`.
     #[inline]
     pub fn add(&mut self, c: Vec3, signature: u32) {
         if self.count == 0 {
@@ -31,6 +34,7 @@ impl PixelSum {
         self.count += 1;
     }
 
+    /// The mean colour so far (black before any subsample).
     #[inline]
     pub fn mean(&self) -> Vec3 {
         if self.count == 0 {
@@ -55,19 +59,25 @@ impl PixelSum {
     }
 }
 
+/// Rec. 709 luminance of a linear colour.
 #[inline]
 pub fn luminance(c: Vec3) -> f32 {
     c.dot(Vec3::new(0.2126, 0.7152, 0.0722))
 }
 
+/// The running sums of every pixel of an image, rows top to bottom.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Accumulator {
+    /// Width in pixels.
     pub width: u32,
+    /// Height in pixels.
     pub height: u32,
+    /// One sum per pixel.
     pub pixels: Vec<PixelSum>,
 }
 
 impl Accumulator {
+    /// Empty sums for a `width` × `height` image.
     pub fn new(width: u32, height: u32) -> Self {
         Self {
             width,
@@ -76,6 +86,7 @@ impl Accumulator {
         }
     }
 
+    /// Empties every sum.
     pub fn clear(&mut self) {
         self.pixels.fill(PixelSum::default());
     }
@@ -98,6 +109,7 @@ impl Accumulator {
         }
     }
 
+    /// The image as 8-bit RGB (linear values, rounded).
     pub fn to_rgb8(&self) -> image::RgbImage {
         let mut raw = Vec::with_capacity(self.pixels.len() * 3);
         for p in &self.pixels {

@@ -2,18 +2,21 @@
 //! an accumulator. The command line, the viewer and the bench all run these same passes,
 //! so a one-shot render equals a finished progressive one by construction.
 
-pub mod accumulator;
-pub mod compare;
-pub mod output;
-pub mod pass;
-pub mod progressive;
-pub mod settings;
+mod accumulator;
+mod compare;
+mod output;
+mod pass;
+mod progressive;
+mod settings;
 
-pub use accumulator::Accumulator;
-pub use output::{OutputError, PendingFile};
-pub use pass::{PassStats, render_pass};
+pub use accumulator::{Accumulator, PixelSum, luminance, to_8bit};
+pub use compare::fraction_differing;
+pub use output::{
+    ImageFormat, OutputError, PendingFile, remove_pending_files, write_bytes, write_png,
+};
+pub use pass::{BAND_ROWS, PassStats, render_pass};
 pub use progressive::{PassOutcome, ProgressiveRender};
-pub use settings::{AdaptiveSettings, RenderSettings, SettingsError};
+pub use settings::{AdaptiveSettings, DEFAULT_MIN_WEIGHT, RenderSettings, SettingsError};
 
 use crate::camera::Camera;
 use crate::scene::PreparedScene;

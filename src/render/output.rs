@@ -11,19 +11,35 @@ use std::sync::Mutex;
 use std::sync::atomic::{AtomicU64, Ordering};
 use thiserror::Error;
 
+/// Why an image cannot be written.
 #[derive(Debug, Error)]
 pub enum OutputError {
+    /// The file cannot be created here.
     #[error("{}: cannot write here: {reason}", path.display())]
-    Create { path: PathBuf, reason: String },
+    Create {
+        /// The file.
+        path: PathBuf,
+        /// Why, in words.
+        reason: String,
+    },
+    /// Writing it failed part-way (nothing is left behind).
     #[error("{}: failed while writing: {reason}", path.display())]
-    Write { path: PathBuf, reason: String },
+    Write {
+        /// The file.
+        path: PathBuf,
+        /// Why, in words.
+        reason: String,
+    },
     #[error(
         "{}: prism writes PNG images; name the file with a .png extension (got {})",
         path.display(),
         match extension { Some(e) => format!("\".{e}\""), None => "no extension".into() }
     )]
+    /// The path's extension names no format prism writes.
     Format {
+        /// The file asked for.
         path: PathBuf,
+        /// Its extension, if it has one.
         extension: Option<String>,
     },
 }
@@ -31,6 +47,7 @@ pub enum OutputError {
 /// The image formats prism writes, chosen by a path's extension.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ImageFormat {
+    /// Portable Network Graphics, 8 bits per channel.
     Png,
 }
 
@@ -117,6 +134,7 @@ fn resolve_links(path: &Path) -> Result<PathBuf, String> {
 }
 
 impl PendingFile {
+    /// Claims `path`: a temporary file beside it, renamed onto it when finished and removed if the render stops first.
     pub fn create(path: &Path) -> Result<Self, OutputError> {
         let err = |reason: String| OutputError::Create {
             path: path.to_path_buf(),
@@ -182,6 +200,7 @@ impl PendingFile {
         })
     }
 
+    /// The path that will be written.
     pub fn path(&self) -> &Path {
         &self.path
     }

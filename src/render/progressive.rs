@@ -13,6 +13,7 @@ use crate::scene::PreparedScene;
 use rayon::prelude::*;
 use std::sync::Arc;
 
+/// What one step of a progressive render did.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum PassOutcome {
     /// One more subsample was added to every active pixel.
@@ -23,6 +24,7 @@ pub enum PassOutcome {
     Converged,
 }
 
+/// A render refined one subsample per pixel per step, which can be restarted with a new scene, camera or settings at any moment.
 pub struct ProgressiveRender {
     scene: Arc<PreparedScene>,
     camera: Camera,
@@ -93,6 +95,7 @@ impl ProgressiveRender {
         self.restart();
     }
 
+    /// A new camera; the accumulation restarts.
     pub fn set_camera(&mut self, camera: Camera) {
         self.camera = camera;
         self.rays = camera.rays(self.settings.width, self.settings.height);
@@ -189,18 +192,22 @@ impl ProgressiveRender {
         self.active_count = count;
     }
 
+    /// Whether every pixel has all its subsamples, or adaptive sampling has stopped them all.
     pub fn is_converged(&self) -> bool {
         self.passes_done >= self.settings.total_passes() || self.active_count == 0
     }
 
+    /// Passes finished since the last restart.
     pub fn passes_done(&self) -> u32 {
         self.passes_done
     }
 
+    /// Passes to convergence.
     pub fn total_passes(&self) -> u32 {
         self.settings.total_passes()
     }
 
+    /// The sums so far.
     pub fn accumulator(&self) -> &Accumulator {
         &self.accumulator
     }
@@ -210,6 +217,7 @@ impl ProgressiveRender {
         self.active_count
     }
 
+    /// Rays traced since the last restart.
     pub fn rays_traced(&self) -> RayCounts {
         self.rays_traced
     }
@@ -219,14 +227,17 @@ impl ProgressiveRender {
         self.seconds
     }
 
+    /// The settings in force.
     pub fn settings(&self) -> &RenderSettings {
         &self.settings
     }
 
+    /// The camera in force.
     pub fn camera(&self) -> &Camera {
         &self.camera
     }
 
+    /// The scene being rendered.
     pub fn scene(&self) -> &Arc<PreparedScene> {
         &self.scene
     }

@@ -4,18 +4,24 @@ use crate::integrator::SelfIntersection;
 use crate::sampler::SampleLayout;
 use thiserror::Error;
 
-use crate::limits::{MAX_AA, MAX_IMAGE_SIDE as MAX_SIDE};
+use crate::limits::{AA, ADAPTIVE_TOLERANCE, EDGE_CONTRAST, IMAGE_SIDE};
 
+/// What a render is asked to do.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RenderSettings {
+    /// Image width in pixels.
     pub width: u32,
+    /// Image height in pixels.
     pub height: u32,
     /// Anti-aliasing level N: N×N subsamples per pixel, one per pass.
     pub aa: u32,
+    /// Where in each pixel the subsamples lie.
     pub layout: SampleLayout,
     /// Secondary rays weighted below this are skipped (0 traces all).
     pub min_weight: f32,
+    /// Stop refining pixels whose subsamples agree (None: every pixel gets all N×N).
     pub adaptive: Option<AdaptiveSettings>,
+    /// How secondary rays avoid re-hitting their own surface.
     pub self_intersection: SelfIntersection,
 }
 
@@ -52,6 +58,7 @@ impl Default for AdaptiveSettings {
 pub const DEFAULT_MIN_WEIGHT: f32 = 1.0 / 512.0;
 
 impl RenderSettings {
+    /// A render of `width` × `height` pixels at anti-aliasing level `aa`, with every other setting at its default.
     pub fn new(width: u32, height: u32, aa: u32) -> Self {
         Self {
             width,
@@ -64,20 +71,21 @@ impl RenderSettings {
         }
     }
 
+    /// Checks every setting against its bounds (limits.rs).
     pub fn validate(&self) -> Result<(), SettingsError> {
-        if self.width == 0 || self.height == 0 {
+        if self.width < *IMAGE_SIDE.start() || self.height < *IMAGE_SIDE.start() {
             return Err(SettingsError::ZeroSize {
                 width: self.width,
                 height: self.height,
             });
         }
-        if self.width > MAX_SIDE || self.height > MAX_SIDE {
+        if !(IMAGE_SIDE.contains(&self.width) && IMAGE_SIDE.contains(&self.height)) {
             return Err(SettingsError::TooLarge {
                 width: self.width,
                 height: self.height,
             });
         }
-        if !(1..=MAX_AA).contains(&self.aa) {
+        if !AA.contains(&self.aa) {
             return Err(SettingsError::Aa(self.aa));
         }
         if !(self.min_weight.is_finite() && (0.0..1.0).contains(&self.min_weight)) {
@@ -89,13 +97,13 @@ impl RenderSettings {
             return Err(SettingsError::Epsilon(e));
         }
         if let Some(a) = self.adaptive {
-            if !(a.tolerance.is_finite() && a.tolerance > 0.0) {
+            if !ADAPTIVE_TOLERANCE.contains(&a.tolerance) {
                 return Err(SettingsError::Tolerance(a.tolerance));
             }
             if a.min_samples == 0 {
                 return Err(SettingsError::MinSamples);
             }
-            if !(a.edge_contrast.is_finite() && a.edge_contrast >= 0.0) {
+            if !EDGE_CONTRAST.contains(&a.edge_contrast) {
                 return Err(SettingsError::EdgeContrast(a.edge_contrast));
             }
         }
@@ -126,23 +134,52 @@ impl RenderSettings {
     }
 }
 
+/// A setting outside its bounds.
 #[derive(Debug, Error, PartialEq)]
 pub enum SettingsError {
+    /// A side of zero pixels.
     #[error("image size {width}×{height}: width and height must be at least 1")]
-    ZeroSize { width: u32, height: u32 },
-    #[error("image size {width}×{height}: width and height must be at most {MAX_SIDE}")]
-    TooLarge { width: u32, height: u32 },
-    #[error("anti-aliasing level {0}: must be 1 to {MAX_AA} (N×N subsamples per pixel)")]
+    ZeroSize {
+        /// The width asked for.
+        width: u32,
+        /// The height asked for.
+        height: u32,
+    },
+    /// A side beyond the largest image.
+    #[error("image size {width}×{height}: width and height must be at most {}", IMAGE_SIDE.end())]
+    TooLarge {
+        /// The width asked for.
+        width: u32,
+        /// The height asked for.
+        height: u32,
+    },
+    /// An anti-aliasing level out of range.
+    #[error("anti-aliasing level {level}: must be {} to {} (N×N subsamples per pixel)", AA.start(), AA.end(), level = .0)]
     Aa(u32),
+    /// A faint-ray threshold out of range.
     #[error("minimum ray weight {0}: must be a number in [0, 1)")]
     MinWeight(f32),
-    #[error("adaptive tolerance {0}: must be a number greater than zero")]
+    #[error(
+        "adaptive tolerance {value}: must be a number from {} to {}",
+        ADAPTIVE_TOLERANCE.start(),
+        ADAPTIVE_TOLERANCE.end(),
+        value = .0
+    )]
+    /// An adaptive tolerance out of range.
     Tolerance(f32),
+    /// A negative or non-finite self-intersection offset.
     #[error("self-intersection epsilon {0}: must be a finite number ≥ 0")]
     Epsilon(f32),
+    /// Adaptive sampling with a minimum of no samples.
     #[error("adaptive minimum samples must be at least 1")]
     MinSamples,
-    #[error("adaptive edge contrast {0}: must be a finite number ≥ 0")]
+    #[error(
+        "adaptive edge contrast {value}: must be a number from {} to {}",
+        EDGE_CONTRAST.start(),
+        EDGE_CONTRAST.end(),
+        value = .0
+    )]
+    /// An edge contrast out of range.
     EdgeContrast(f32),
     /// The viewer's window (image beside the panel) is larger than it opens.
     #[error(
@@ -151,5 +188,13 @@ pub enum SettingsError {
          `prism render` for large images",
         crate::limits::MAX_WINDOW_SIDE
     )]
-    Window { width: u32, height: u32, panel: u32 },
+    /// A viewer window larger than it may open.
+    Window {
+        /// The width asked for.
+        width: u32,
+        /// The height asked for.
+        height: u32,
+        /// The panel's width, in pixels.
+        panel: u32,
+    },
 }

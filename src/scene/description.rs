@@ -13,21 +13,30 @@ use glam::{DVec3, Vec3};
 /// world's origin the scene sits (camera-relative rendering).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Scene {
+    /// The world position of the frame every other position is relative to.
     pub origin: DVec3,
+    /// The view.
     pub camera: Camera,
+    /// The image settings the file suggests.
     pub render: RenderDefaults,
+    /// What a ray that leaves the scene sees.
     pub background: Vec3,
     /// Ambient light, multiplied by each material's `ambient` factor and colour.
     pub ambient: Vec3,
+    /// The point lights.
     pub lights: Vec<PointLight>,
+    /// The objects, in the file's order.
     pub objects: Vec<SceneObject>,
 }
 
 /// Image settings a scene file may suggest; the command line overrides them.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RenderDefaults {
+    /// Image width in pixels.
     pub width: u32,
+    /// Image height in pixels.
     pub height: u32,
+    /// Anti-aliasing level N (N×N subsamples per pixel).
     pub aa: u32,
     /// The most secondary bounces (reflection or refraction) along one path.
     pub max_depth: u32,
@@ -44,34 +53,49 @@ impl Default for RenderDefaults {
     }
 }
 
+/// One object: a named shape of one material.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SceneObject {
+    /// The name the file gives it (or one made from its table and index).
     pub name: String,
+    /// Its shape.
     pub shape: ShapeDesc,
+    /// What it is made of.
     pub material: Material,
 }
 
+/// Every kind of shape a scene file describes (a closed set).
 #[derive(Clone, Debug, PartialEq)]
 pub enum ShapeDesc {
+    /// A sphere.
     Sphere {
+        /// Its centre.
         center: Vec3,
+        /// Its radius.
         radius: f32,
     },
     /// Along +y from the centre of its bottom cap, closed at both ends.
     Cylinder {
+        /// The centre of its bottom cap.
         base: Vec3,
+        /// Its radius.
         radius: f32,
+        /// Its height.
         height: f32,
     },
     /// A planar convex polygon, corners in order.
     Polygon {
+        /// At least three corners.
         vertices: Vec<Vec3>,
     },
+    /// A triangle.
     Triangle {
+        /// Its corners, in winding order.
         vertices: [Vec3; 3],
     },
     /// Four corners; the faces are oriented outwards whatever their order.
     Tetrahedron {
+        /// Its corners.
         vertices: [Vec3; 4],
     },
 }

@@ -3,22 +3,42 @@
 
 use super::description::Scene;
 use crate::camera::Camera;
-use crate::limits::{ETA, MAX_COORDINATE, MAX_PITCH, VFOV};
+use crate::limits::{ETA, FRACTION};
 use thiserror::Error;
 
+/// Why an edit was refused.
 #[derive(Debug, Error, PartialEq)]
 pub enum EditError {
+    /// The scene has no object with this index.
     #[error("no object number {0}")]
     NoSuchObject(usize),
+    /// An eta out of range.
     #[error("{object}: eta {value} must be a number from {} to {}", ETA.start(), ETA.end())]
-    Eta { object: String, value: f32 },
-    #[error("{object}: transparency {value} must be a number from 0 to 1")]
-    Transparency { object: String, value: f32 },
+    Eta {
+        /// The object's name.
+        object: String,
+        /// The value refused.
+        value: f32,
+    },
+    #[error(
+        "{object}: transparency {value} must be a number from {} to {}",
+        FRACTION.start(),
+        FRACTION.end()
+    )]
+    /// A transparency out of range.
+    Transparency {
+        /// The object's name.
+        object: String,
+        /// The value refused.
+        value: f32,
+    },
+    /// A camera that breaks a rule (the message says which).
     #[error("camera: {0}")]
     Camera(String),
 }
 
 impl Scene {
+    /// Sets object `object`'s index of refraction, within limits.rs's range.
     pub fn set_eta(&mut self, object: usize, eta: f32) -> Result<(), EditError> {
         let o = self
             .objects
@@ -34,12 +54,13 @@ impl Scene {
         Ok(())
     }
 
+    /// Sets object `object`'s transparency, from 0 to 1.
     pub fn set_transparency(&mut self, object: usize, t: f32) -> Result<(), EditError> {
         let o = self
             .objects
             .get_mut(object)
             .ok_or(EditError::NoSuchObject(object))?;
-        if !(0.0..=1.0).contains(&t) {
+        if !FRACTION.contains(&t) {
             return Err(EditError::Transparency {
                 object: o.name.clone(),
                 value: t,
@@ -50,34 +71,9 @@ impl Scene {
     }
 }
 
-/// Checks a camera set by hand: finite, within reach of f32, pitch and field of view in range.
+/// Checks a camera set by hand, by the rules every camera follows ([`Camera::check`]).
 pub fn check_camera(c: &Camera) -> Result<(), EditError> {
-    let bad = |m: String| Err(EditError::Camera(m));
-    // Like every position, within reach of the scene's origin (limits.rs).
-    if !c.eye.is_finite() || c.eye.abs().max_element() as f64 > MAX_COORDINATE {
-        return bad(format!(
-            "eye {} must be finite and within ±{MAX_COORDINATE:e}",
-            c.eye
-        ));
-    }
-    if !c.up.is_finite() || (c.up.length() - 1.0).abs() > 1e-3 {
-        return bad(format!("up {} must be a unit vector", c.up));
-    }
-    if !c.yaw.is_finite() {
-        return bad(format!("yaw {} must be a finite number", c.yaw));
-    }
-    if !(-MAX_PITCH..=MAX_PITCH).contains(&c.pitch) {
-        return bad(format!("pitch {} must lie in ±{MAX_PITCH}°", c.pitch));
-    }
-    if !VFOV.contains(&c.vfov) {
-        return bad(format!(
-            "field of view {} must lie in {}..{}°",
-            c.vfov,
-            VFOV.start(),
-            VFOV.end()
-        ));
-    }
-    Ok(())
+    c.check().map_err(EditError::Camera)
 }
 
 #[cfg(test)]

@@ -3,25 +3,39 @@
 use std::path::PathBuf;
 use thiserror::Error;
 
+/// Why a scene file cannot be loaded, with where in the file.
 #[derive(Debug, Error)]
 pub enum SceneError {
     /// The file cannot be read: missing, not a regular file, too large, not UTF-8 text.
     #[error("{}: cannot read the scene file: {reason}", path.display())]
-    Read { path: PathBuf, reason: String },
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// Why, in words.
+        reason: String,
+    },
     /// TOML syntax, an unknown or missing field, a value of the wrong type.
     #[error("{}:{line}:{column}: {message}", path.display())]
     Syntax {
+        /// The scene file.
         path: PathBuf,
+        /// The line, counted from 1.
         line: usize,
+        /// The column, counted from 1.
         column: usize,
+        /// What is wrong.
         message: String,
     },
     /// A well-formed value that makes no sense: a negative radius, an eta of zero, …
     #[error("{}:{line}: {item}: {message}", path.display())]
     Invalid {
+        /// The scene file.
         path: PathBuf,
+        /// The line, counted from 1.
         line: usize,
+        /// The table the value is in (`spheres[2]`, `camera`).
         item: String,
+        /// What is wrong.
         message: String,
     },
 }

@@ -3,6 +3,7 @@
 
 use super::description::{RenderDefaults, Scene, SceneObject, ShapeDesc};
 use super::error::{SceneError, line_column};
+use super::spans::FieldSpans;
 use crate::appearance::Material;
 use crate::appearance::PointLight;
 use crate::appearance::{ImageTexture, Texture, TextureError};
@@ -268,6 +269,7 @@ pub fn parse_scene_with(source: &str, path: &Path, assets: Assets) -> Result<Sce
     let v = Validator {
         path: path.to_path_buf(),
         source,
+        spans: FieldSpans::new(source),
         assets,
         origin: glam::DVec3::from(eye),
     };
@@ -277,6 +279,8 @@ pub fn parse_scene_with(source: &str, path: &Path, assets: Assets) -> Result<Sce
 struct Validator<'a> {
     path: PathBuf,
     source: &'a str,
+    /// Where every key and value lies in `source`.
+    spans: FieldSpans<'a>,
     assets: Assets<'a>,
     /// The camera's eye, in f64: positions are stored relative to it.
     origin: glam::DVec3,
@@ -289,34 +293,19 @@ struct Item<'s> {
 }
 
 impl Validator<'_> {
-    /// An error in table `at`, pointing at the line of `field` when the table names it.
+    /// An error in table `at`, pointing at the line of `field` (or of the element
+    /// `field[i]` names) when the table has it, else at the table.
     fn field_error(&self, at: &Item, field: &str, message: impl Into<String>) -> SceneError {
-        let key = field.split(['[', '.']).next().unwrap_or(field);
-        // The span may cover only a table's header: search on to the next header.
-        let rest = &self.source[at.span.start..];
-        let end = rest
-            .match_indices('\n')
-            .map(|(i, _)| i + 1)
-            .find(|&i| rest[i..].trim_start().starts_with('['))
-            .unwrap_or(rest.len())
-            .max(at.span.len().min(rest.len()));
-        let table = &rest[..end];
-        let mut offset = 0;
-        for line in table.split_inclusive('\n') {
-            let trimmed = line.trim_start();
-            if let Some(rest) = trimmed.strip_prefix(key)
-                && rest.trim_start().starts_with('=')
-            {
-                let start = at.span.start + offset + (line.len() - trimmed.len());
+        match self.spans.field(at.span.start, field) {
+            Some(span) => {
                 let at = Item {
-                    span: start..start,
+                    span,
                     name: at.name,
                 };
-                return self.error(&at, message);
+                self.error(&at, message)
             }
-            offset += line.len();
+            None => self.error(at, message),
         }
-        self.error(at, message)
     }
 
     fn error(&self, at: &Item, message: impl Into<String>) -> SceneError {
@@ -522,8 +511,9 @@ impl Validator<'_> {
             let material = match material {
                 None => Material::default(),
                 Some(m) => materials.get(m).cloned().ok_or_else(|| {
-                    self.error(
+                    self.field_error(
                         &at,
+                        "material",
                         format!("no material named {} (see [materials])", quoted(m)),
                     )
                 })?,
@@ -681,36 +671,57 @@ impl Validator<'_> {
         let direction = if let Some(target) = c.look_at {
             let target = self.position(&at, "look_at", target)?;
             if target == eye {
-                return Err(self.error(&at, "`look_at` equals `eye`: the camera has no direction"));
+                return Err(self.field_error(
+                    &at,
+                    "look_at",
+                    "`look_at` equals `eye`: the camera has no direction",
+                ));
             }
             target - eye
         } else if let Some(d) = c.direction {
             self.point(&at, "direction", d)?
         } else {
             let yaw = self.number(&at, "yaw", c.yaw.unwrap_or(0.0))?;
-            let pitch = self.in_range(&at, "pitch", c.pitch.unwrap_or(0.0), -89.0, 89.0)?;
-            return Ok(Camera {
+            let pitch = self.in_range(
+                &at,
+                "pitch",
+                c.pitch.unwrap_or(0.0),
+                *limits::PITCH.start(),
+                *limits::PITCH.end(),
+            )?;
+            let camera = Camera {
                 eye,
                 yaw,
                 pitch,
                 vfov,
                 up,
-            });
+            };
+            // The fields are checked one by one above, for messages on their own lines;
+            // this is the rule every camera follows.
+            return camera
+                .check()
+                .map(|()| camera)
+                .map_err(|m| self.error(&at, m));
         };
         if crate::numerics::try_normalize(direction).is_none() {
-            return Err(self.error(
+            return Err(self.field_error(
                 &at,
+                "direction",
                 format!("the view direction {direction} has zero length"),
             ));
         }
-        Camera::looking_along_up(eye, direction, up, vfov).ok_or_else(|| {
+        let camera = Camera::looking_along_up(eye, direction, up, vfov).ok_or_else(|| {
             self.error(
                 &at,
                 format!(
                     "the view direction {direction} is within 1° of `up` {up}: choose another `up`"
                 ),
             )
-        })
+        })?;
+        camera
+            .check()
+            .map(|()| camera)
+            .map_err(|m| self.error(&at, m))
     }
 
     fn render(
@@ -733,22 +744,28 @@ impl Validator<'_> {
                 "width",
                 opt(r.width, defaults.width),
                 1,
-                limits::MAX_IMAGE_SIDE as i64,
+                *limits::IMAGE_SIDE.end() as i64,
             )?,
             height: self.count(
                 &at,
                 "height",
                 opt(r.height, defaults.height),
                 1,
-                limits::MAX_IMAGE_SIDE as i64,
+                *limits::IMAGE_SIDE.end() as i64,
             )?,
-            aa: self.count(&at, "aa", opt(r.aa, defaults.aa), 1, limits::MAX_AA as i64)?,
+            aa: self.count(
+                &at,
+                "aa",
+                opt(r.aa, defaults.aa),
+                *limits::AA.start() as i64,
+                *limits::AA.end() as i64,
+            )?,
             max_depth: self.count(
                 &at,
                 "max_depth",
                 opt(r.max_depth, defaults.max_depth),
                 0,
-                limits::MAX_DEPTH as i64,
+                *limits::DEPTH.end() as i64,
             )?,
         };
         let background = self.radiance(&at, "background", r.background.unwrap_or([0.0; 3]))?;
@@ -882,12 +899,15 @@ impl Validator<'_> {
         let d = Material::default();
         let texture = match (&m.texture, m.color) {
             (Some(_), Some(_)) => {
-                return Err(self.error(&at, "give either `color` or `texture`, not both"));
+                return Err(self.field_error(
+                    &at,
+                    "texture",
+                    "give either `color` or `texture`, not both",
+                ));
             }
-            (Some(t), None) => textures
-                .get(t)
-                .cloned()
-                .ok_or_else(|| self.error(&at, format!("no texture named {}", quoted(t))))?,
+            (Some(t), None) => textures.get(t).cloned().ok_or_else(|| {
+                self.field_error(&at, "texture", format!("no texture named {}", quoted(t)))
+            })?,
             (None, Some(c)) => Texture::Solid(self.reflectance(&at, "color", c)?),
             (None, None) => d.texture.clone(),
         };
@@ -900,8 +920,9 @@ impl Validator<'_> {
                 limits::MAX_PHONG_FACTOR,
             )
         };
+        let (lo, hi) = (*limits::FRACTION.start(), *limits::FRACTION.end());
         let fraction =
-            |field: &str, v: Option<f32>| self.in_range(&at, field, v.unwrap_or(0.0), 0.0, 1.0);
+            |field: &str, v: Option<f32>| self.in_range(&at, field, v.unwrap_or(0.0), lo, hi);
         let eta = match m.eta {
             None => None,
             Some(e) => {

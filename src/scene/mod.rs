@@ -5,15 +5,17 @@
 //!                                                                      = Geometry + Appearance
 //! ```
 
-pub mod description;
-pub mod edit;
-pub mod error;
-pub mod file;
+mod description;
+mod edit;
+mod error;
+mod file;
 mod geometry;
 mod prepared;
+mod spans;
 
 pub use description::{RenderDefaults, Scene, SceneObject, ShapeDesc};
+pub use edit::{EditError, check_camera};
 pub use error::SceneError;
-pub use file::{load_scene, parse_scene};
+pub use file::{Assets, load_scene, parse_scene, parse_scene_with};
 pub use geometry::{Geometry, ObjectGeometry, PlanarUv};
 pub use prepared::PreparedScene;

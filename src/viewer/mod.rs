@@ -3,30 +3,37 @@
 //! this thread only handles input, copies finished passes into the framebuffer, and draws.
 
 mod camera_input;
+mod gfx;
 mod panel;
 mod render_thread;
 mod screenshot;
 
 use anyhow::{Context, Result, anyhow};
 use camera_input::CameraInput;
+use gfx::Gfx;
 use panel::{PANEL_WIDTH, PanelState};
-use pixels::{Pixels, PixelsBuilder, SurfaceTexture, wgpu};
 use prism::render::{AdaptiveSettings, RenderSettings};
 use prism::scene::Scene;
 use render_thread::{RenderThread, Request, Status};
 use std::path::PathBuf;
-use std::sync::Arc;
 use std::time::{Duration, Instant};
 use winit::application::ApplicationHandler;
-use winit::dpi::{LogicalSize, PhysicalPosition, PhysicalSize};
-use winit::event::{ElementState, MouseButton, MouseScrollDelta, WindowEvent};
+use winit::dpi::{PhysicalPosition, PhysicalSize};
+use winit::event::{ElementState, KeyEvent, MouseButton, MouseScrollDelta, WindowEvent};
 use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop, EventLoopProxy};
 use winit::keyboard::{KeyCode, PhysicalKey};
-use winit::window::{Window, WindowId};
+use winit::window::WindowId;
 
 /// While nothing changes, repaints the window system asks for (X11 exposures; under Xvfb
 /// every present causes one) are served at most this often.
 const IDLE_REPAINT: Duration = Duration::from_millis(200);
+
+/// Which input egui (the panel) takes this event.
+struct EguiClaims {
+    keys: bool,
+    pointer: bool,
+    wheel: bool,
+}
 
 /// Sent by the render thread when it has published a new image.
 #[derive(Debug, Clone, Copy)]
@@ -133,38 +140,6 @@ struct App {
     render_error: Option<String>,
 }
 
-/// Everything that exists only while the window does.
-struct Gfx {
-    window: Arc<Window>,
-    pixels: Pixels<'static>,
-    egui_ctx: egui::Context,
-    egui_state: egui_winit::State,
-    renderer: egui_wgpu::Renderer,
-    render: RenderThread,
-    size: PhysicalSize<u32>,
-}
-
-impl Gfx {
-    fn panel_px(&self) -> u32 {
-        panel_px(&self.window)
-    }
-
-    fn image_size(&self) -> (u32, u32) {
-        image_size(self.size, &self.window)
-    }
-}
-
-/// Width of the panel in physical pixels.
-fn panel_px(window: &Window) -> u32 {
-    (PANEL_WIDTH * window.scale_factor() as f32).ceil() as u32
-}
-
-/// The render resolution: the window area beside the panel.
-fn image_size(size: PhysicalSize<u32>, window: &Window) -> (u32, u32) {
-    let w = size.width.saturating_sub(panel_px(window)).max(1);
-    (w, size.height.max(1))
-}
-
 impl App {
     fn settings(&self, width: u32, height: u32) -> RenderSettings {
         let mut s = RenderSettings::new(width, height, self.panel.aa);
@@ -178,62 +153,14 @@ impl App {
     }
 
     fn create_gfx(&mut self, event_loop: &ActiveEventLoop) -> Result<Gfx> {
-        let (w, h) = self.initial_image;
-        let attrs = Window::default_attributes()
-            .with_title("prism")
-            .with_inner_size(LogicalSize::new(w as f64 + PANEL_WIDTH as f64, h as f64))
-            .with_min_inner_size(LogicalSize::new(PANEL_WIDTH as f64 + 64.0, 200.0));
-        let window = Arc::new(
-            event_loop
-                .create_window(attrs)
-                .context("cannot create the window")?,
-        );
-        let size = window.inner_size();
-        let surface = SurfaceTexture::new(size.width.max(1), size.height.max(1), window.clone());
-        let pixels = PixelsBuilder::new(size.width.max(1), size.height.max(1), surface)
-            .enable_vsync(true)
-            .build()
-            .map_err(|e| {
-                anyhow!(
-                    "no usable GPU adapter for the window ({e}); \
-                     `prism render` renders without one"
-                )
-            })?;
-        let egui_ctx = egui::Context::default();
-        let max_texture = pixels.device().limits().max_texture_dimension_2d as usize;
-        let egui_state = egui_winit::State::new(
-            egui_ctx.clone(),
-            egui::ViewportId::ROOT,
-            &*window,
-            Some(window.scale_factor() as f32),
-            None,
-            Some(max_texture),
-        );
-        let renderer = egui_wgpu::Renderer::new(
-            pixels.device(),
-            pixels.surface_texture_format(),
-            egui_wgpu::RendererOptions::default(),
-        );
-        let (iw, ih) = image_size(size, &window);
         let proxy = self.proxy.clone();
-        let render = RenderThread::spawn(
-            &self.panel.scene,
-            self.panel.camera,
-            self.settings(iw, ih),
-            move || {
+        let (scene, camera) = (&self.panel.scene, self.panel.camera);
+        let settings = |(w, h)| self.settings(w, h);
+        Gfx::open(event_loop, self.initial_image, |image| {
+            RenderThread::spawn(scene, camera, settings(image), move || {
                 let _ = proxy.send_event(Wake);
-            },
-        );
-        let gfx = Gfx {
-            window,
-            pixels,
-            egui_ctx,
-            egui_state,
-            renderer,
-            render,
-            size,
-        };
-        Ok(gfx)
+            })
+        })
     }
 
     fn send_camera(&self, moving: bool) {
@@ -268,6 +195,8 @@ impl App {
         }
     }
 
+    /// One frame: fly the camera, show the newest image, run the panel, draw, and send the
+    /// panel's changes to the render thread.
     fn redraw(&mut self) -> Result<()> {
         let now = Instant::now();
         let dt = (now - self.last_frame).as_secs_f32().min(0.1);
@@ -278,34 +207,12 @@ impl App {
         let Some(g) = &mut self.gfx else {
             return Ok(());
         };
-        let panel_px = g.panel_px();
-        {
-            let p = g.render.published();
-            if p.status.converged && !self.status.converged {
-                // A line for whoever launched the viewer (and for the window test).
-                eprintln!(
-                    "prism: converged: {} passes, {:.2} samples per pixel, {:.2} s",
-                    p.status.passes_done, p.status.samples_per_pixel, p.status.seconds
-                );
-            }
-            if let Some(e) = &p.status.error
-                && self.status.error.as_ref() != Some(e)
-            {
-                eprintln!("prism: error: the render failed: {e}");
-                self.render_error = Some(e.clone());
-            }
-            self.status = p.status.clone();
-            if p.serial != self.shown_serial {
-                self.shown_serial = p.serial;
-                copy_image(
-                    g.pixels.frame_mut(),
-                    g.size.width,
-                    g.size.height,
-                    panel_px,
-                    &p,
-                );
-            }
-        }
+        let (status, serial) = g.take_published(self.shown_serial);
+        self.shown_serial = serial;
+        self.report(status);
+        let Some(g) = &mut self.gfx else {
+            return Ok(());
+        };
         let input = g.egui_state.take_egui_input(&g.window);
         let mut changes = panel::Changes::default();
         let panel = &mut self.panel;
@@ -318,56 +225,44 @@ impl App {
         });
         g.egui_state
             .handle_platform_output(&g.window, output.platform_output);
-        let paint_jobs = g
-            .egui_ctx
-            .tessellate(output.shapes, output.pixels_per_point);
-        let screen = egui_wgpu::ScreenDescriptor {
-            size_in_pixels: [g.size.width, g.size.height],
-            pixels_per_point: output.pixels_per_point,
-        };
-        let textures = output.textures_delta;
-        let renderer = &mut g.renderer;
-        g.pixels
-            .render_with(|encoder, target, context| {
-                context.scaling_renderer.render(encoder, target);
-                for (id, delta) in &textures.set {
-                    renderer.update_texture(&context.device, &context.queue, *id, delta);
-                }
-                let extra = renderer.update_buffers(
-                    &context.device,
-                    &context.queue,
-                    encoder,
-                    &paint_jobs,
-                    &screen,
-                );
-                debug_assert!(extra.is_empty(), "no egui paint callbacks are used");
-                let mut pass = encoder
-                    .begin_render_pass(&wgpu::RenderPassDescriptor {
-                        label: Some("egui"),
-                        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                            view: target,
-                            depth_slice: None,
-                            resolve_target: None,
-                            ops: wgpu::Operations {
-                                load: wgpu::LoadOp::Load,
-                                store: wgpu::StoreOp::Store,
-                            },
-                        })],
-                        depth_stencil_attachment: None,
-                        timestamp_writes: None,
-                        occlusion_query_set: None,
-                        multiview_mask: None,
-                    })
-                    .forget_lifetime();
-                renderer.render(&mut pass, &paint_jobs, &screen);
-                drop(pass);
-                for id in &textures.free {
-                    renderer.free_texture(id);
-                }
-                Ok(())
-            })
-            .context("drawing the window failed")?;
-        let (iw, ih) = g.image_size();
+        g.draw(
+            output.shapes,
+            output.pixels_per_point,
+            output.textures_delta,
+        )?;
+        let repaint_now = output
+            .viewport_output
+            .get(&egui::ViewportId::ROOT)
+            .is_some_and(|v| v.repaint_delay.is_zero());
+        self.apply(changes);
+        if repaint_now && let Some(g) = &self.gfx {
+            self.dirty = true;
+            g.window.request_redraw();
+        }
+        Ok(())
+    }
+
+    /// Takes the render thread's status, saying on stderr when the image converges or the
+    /// render fails (for whoever launched the viewer, and for the window test).
+    fn report(&mut self, status: Status) {
+        if status.converged && !self.status.converged {
+            eprintln!(
+                "prism: converged: {} passes, {:.2} samples per pixel, {:.2} s",
+                status.passes_done, status.samples_per_pixel, status.seconds
+            );
+        }
+        if let Some(e) = &status.error
+            && self.status.error.as_ref() != Some(e)
+        {
+            eprintln!("prism: error: the render failed: {e}");
+            self.render_error = Some(e.clone());
+        }
+        self.status = status;
+    }
+
+    /// Sends what the panel changed to the render thread.
+    fn apply(&mut self, changes: panel::Changes) {
+        let Some(g) = &self.gfx else { return };
         for &object in &changes.materials {
             let material = self.panel.scene.objects[object].material.clone();
             g.render.send(Request::Material { object, material });
@@ -376,24 +271,12 @@ impl App {
             self.send_camera(false);
         }
         if changes.settings {
-            let s = self.settings(iw, ih);
-            if let Some(g) = &self.gfx {
-                g.render.send(Request::Settings(s));
-            }
+            let (iw, ih) = g.image_size();
+            g.render.send(Request::Settings(self.settings(iw, ih)));
         }
         if changes.screenshot {
             self.screenshot();
         }
-        if let Some(g) = &self.gfx
-            && output
-                .viewport_output
-                .get(&egui::ViewportId::ROOT)
-                .is_some_and(|v| v.repaint_delay.is_zero())
-        {
-            self.dirty = true;
-            g.window.request_redraw();
-        }
-        Ok(())
     }
 
     fn resize(&mut self, size: PhysicalSize<u32>) -> Result<()> {
@@ -420,26 +303,103 @@ impl App {
         Ok(())
     }
 
+    /// Closes the window; dropping the graphics joins the render thread.
+    fn close(&mut self, event_loop: &ActiveEventLoop) {
+        self.gfx = None;
+        event_loop.exit();
+    }
+
+    /// Draws a frame, unless nothing changed and one was drawn within `IDLE_REPAINT` (a
+    /// deferred repaint then follows).
+    fn on_redraw_requested(&mut self, event_loop: &ActiveEventLoop) {
+        let idle = !self.dirty && !self.input.moving() && self.status.converged;
+        if idle && self.last_present.elapsed() < IDLE_REPAINT {
+            self.refresh_pending = true;
+            return;
+        }
+        self.dirty = false;
+        if let Err(e) = self.redraw() {
+            self.fail(event_loop, e);
+        }
+        self.last_present = Instant::now();
+    }
+
+    /// Ctrl+Q quits, movement keys fly, F12 and P save a screenshot. A press the panel
+    /// takes (`to_egui`) moves nothing; releases always count, so a key never sticks.
+    fn on_key(&mut self, event_loop: &ActiveEventLoop, event: &KeyEvent, to_egui: bool) {
+        let PhysicalKey::Code(code) = event.physical_key else {
+            return;
+        };
+        let pressed = event.state == ElementState::Pressed;
+        // Ctrl+Q quits wherever the keyboard focus is (the panel's too).
+        if pressed && code == KeyCode::KeyQ && self.modifiers.control_key() {
+            return self.close(event_loop);
+        }
+        if pressed && to_egui {
+            return;
+        }
+        let was_flying = self.input.flying();
+        if self.input.key(code, pressed) {
+            if was_flying && !self.input.moving() {
+                self.send_camera(false);
+            }
+            self.last_frame = Instant::now();
+            if let Some(g) = &self.gfx {
+                g.window.request_redraw();
+            }
+        } else if pressed && !event.repeat && matches!(code, KeyCode::F12 | KeyCode::KeyP) {
+            self.screenshot();
+        }
+    }
+
+    /// A drag over the image turns the camera.
+    fn on_cursor_moved(&mut self, position: PhysicalPosition<f64>) {
+        if self.input.dragging
+            && let Some(last) = self.cursor
+        {
+            let (dx, dy) = (position.x - last.x, position.y - last.y);
+            if dx != 0.0 || dy != 0.0 {
+                CameraInput::drag(&mut self.panel.camera, dx as f32, dy as f32);
+                self.send_camera(true);
+            }
+        }
+        self.cursor = Some(position);
+    }
+
+    /// A press on the image (`on_image`, and not taken by the panel) starts a drag; the
+    /// release ends it and refines the view.
+    fn on_left_button(&mut self, state: ElementState, on_image: bool) {
+        match state {
+            ElementState::Pressed => {
+                if on_image {
+                    self.input.dragging = true;
+                }
+            }
+            ElementState::Released => {
+                if self.input.dragging {
+                    self.input.dragging = false;
+                    if !self.input.moving() {
+                        self.send_camera(false);
+                    }
+                }
+            }
+        }
+    }
+
+    /// Scrolling over the image zooms.
+    fn on_wheel(&mut self, delta: MouseScrollDelta) {
+        let lines = match delta {
+            MouseScrollDelta::LineDelta(_, y) => y,
+            MouseScrollDelta::PixelDelta(p) => p.y as f32 / 40.0,
+        };
+        CameraInput::scroll(&mut self.panel.camera, lines);
+        self.send_camera(false);
+    }
+
     fn fail(&mut self, event_loop: &ActiveEventLoop, error: anyhow::Error) {
         self.error = Some(error);
         self.gfx = None;
         event_loop.exit();
-    }
-}
-
-/// Copies the published image into the framebuffer to the right of the panel, clipping to
-/// whichever is smaller while a resize is on its way to the render thread.
-fn copy_image(frame: &mut [u8], fw: u32, fh: u32, x0: u32, p: &render_thread::Published) {
-    let cols = p.width.min(fw.saturating_sub(x0)) as usize;
-    let rows = p.height.min(fh) as usize;
-    // A window narrower than the panel shows no image at all.
-    if cols == 0 {
-        return;
-    }
-    for y in 0..rows {
-        let src = y * p.width as usize * 4;
-        let dst = (y * fw as usize + x0 as usize) * 4;
-        frame[dst..dst + cols * 4].copy_from_slice(&p.rgba[src..src + cols * 4]);
     }
 }
 
@@ -485,32 +445,21 @@ impl ApplicationHandler<Wake> for App {
         if response.repaint {
             g.window.request_redraw();
         }
-        let panel_px = g.panel_px() as f64;
-        let egui_keys = g.egui_ctx.egui_wants_keyboard_input();
-        let egui_pointer = g.egui_ctx.egui_wants_pointer_input();
+        // What egui takes: then the image's camera does not.
+        let egui = EguiClaims {
+            keys: g.egui_ctx.egui_wants_keyboard_input() || response.consumed,
+            pointer: g.egui_ctx.egui_wants_pointer_input() || response.consumed,
+            wheel: response.consumed,
+        };
+        let over_image = self.cursor.is_some_and(|c| c.x >= g.panel_px() as f64);
         match event {
-            WindowEvent::CloseRequested => {
-                // Dropping the graphics joins the render thread.
-                self.gfx = None;
-                event_loop.exit();
-            }
+            WindowEvent::CloseRequested => self.close(event_loop),
             WindowEvent::Resized(size) => {
                 if let Err(e) = self.resize(size) {
                     self.fail(event_loop, e);
                 }
             }
-            WindowEvent::RedrawRequested => {
-                let idle = !self.dirty && !self.input.moving() && self.status.converged;
-                if idle && self.last_present.elapsed() < IDLE_REPAINT {
-                    self.refresh_pending = true;
-                    return;
-                }
-                self.dirty = false;
-                if let Err(e) = self.redraw() {
-                    self.fail(event_loop, e);
-                }
-                self.last_present = Instant::now();
-            }
+            WindowEvent::RedrawRequested => self.on_redraw_requested(event_loop),
             WindowEvent::Focused(false) => {
                 let was_moving = self.input.moving();
                 self.input.release_all();
@@ -518,77 +467,16 @@ impl ApplicationHandler<Wake> for App {
                     self.send_camera(false);
                 }
             }
-            WindowEvent::KeyboardInput { event, .. } => {
-                let PhysicalKey::Code(code) = event.physical_key else {
-                    return;
-                };
-                let pressed = event.state == ElementState::Pressed;
-                // Releases always count, so a key never sticks.
-                // Ctrl+Q quits wherever the keyboard focus is (the panel's too).
-                if pressed && code == KeyCode::KeyQ && self.modifiers.control_key() {
-                    self.gfx = None;
-                    event_loop.exit();
-                    return;
-                }
-                if pressed && (egui_keys || response.consumed) {
-                    return;
-                }
-                let was_flying = self.input.flying();
-                if self.input.key(code, pressed) {
-                    if was_flying && !self.input.moving() {
-                        self.send_camera(false);
-                    }
-                    self.last_frame = Instant::now();
-                    if let Some(g) = &self.gfx {
-                        g.window.request_redraw();
-                    }
-                } else if pressed && !event.repeat && matches!(code, KeyCode::F12 | KeyCode::KeyP) {
-                    self.screenshot();
-                }
-            }
+            WindowEvent::KeyboardInput { event, .. } => self.on_key(event_loop, &event, egui.keys),
             WindowEvent::ModifiersChanged(m) => self.modifiers = m.state(),
-            WindowEvent::CursorMoved { position, .. } => {
-                if self.input.dragging
-                    && let Some(last) = self.cursor
-                {
-                    let (dx, dy) = (position.x - last.x, position.y - last.y);
-                    if dx != 0.0 || dy != 0.0 {
-                        CameraInput::drag(&mut self.panel.camera, dx as f32, dy as f32);
-                        self.send_camera(true);
-                    }
-                }
-                self.cursor = Some(position);
-            }
+            WindowEvent::CursorMoved { position, .. } => self.on_cursor_moved(position),
             WindowEvent::MouseInput {
                 state,
                 button: MouseButton::Left,
                 ..
-            } => match state {
-                ElementState::Pressed => {
-                    let over_image = self.cursor.is_some_and(|c| c.x >= panel_px);
-                    if over_image && !egui_pointer && !response.consumed {
-                        self.input.dragging = true;
-                    }
-                }
-                ElementState::Released => {
-                    if self.input.dragging {
-                        self.input.dragging = false;
-                        if !self.input.moving() {
-                            self.send_camera(false);
-                        }
-                    }
-                }
-            },
-            WindowEvent::MouseWheel { delta, .. } => {
-                let over_image = self.cursor.is_some_and(|c| c.x >= panel_px);
-                if over_image && !response.consumed {
-                    let lines = match delta {
-                        MouseScrollDelta::LineDelta(_, y) => y,
-                        MouseScrollDelta::PixelDelta(p) => p.y as f32 / 40.0,
-                    };
-                    CameraInput::scroll(&mut self.panel.camera, lines);
-                    self.send_camera(false);
-                }
+            } => self.on_left_button(state, over_image && !egui.pointer),
+            WindowEvent::MouseWheel { delta, .. } if over_image && !egui.wheel => {
+                self.on_wheel(delta)
             }
             _ => {}
         }

@@ -3,12 +3,32 @@
 use super::render_thread::Status;
 use egui::{DragValue, RichText, Slider, SliderClamping};
 use prism::camera::Camera;
-use prism::limits::{ETA, MAX_PITCH, VFOV};
 use prism::scene::Scene;
-use prism::scene::edit::check_camera;
+use prism::scene::check_camera;
+use std::ops::RangeInclusive;
 
 /// Panel width in points.
 pub const PANEL_WIDTH: f32 = 300.0;
+
+/// The range of each slider: the bounds the scene file and the edits take (limits.rs), so
+/// that no slider position is a value they refuse and every value they take is reachable.
+pub struct SliderRanges {
+    pub eta: RangeInclusive<f32>,
+    pub transparency: RangeInclusive<f32>,
+    pub aa: RangeInclusive<u32>,
+    pub tolerance: RangeInclusive<f32>,
+    pub pitch: RangeInclusive<f32>,
+    pub vfov: RangeInclusive<f32>,
+}
+
+pub const SLIDERS: SliderRanges = SliderRanges {
+    eta: prism::limits::ETA,
+    transparency: prism::limits::FRACTION,
+    aa: prism::limits::AA,
+    tolerance: prism::limits::ADAPTIVE_TOLERANCE,
+    pitch: prism::limits::PITCH,
+    vfov: prism::limits::VFOV,
+};
 
 /// What the user changed this frame.
 #[derive(Default)]
@@ -68,14 +88,14 @@ impl PanelState {
             ui.separator();
             ui.label(RichText::new("Anti-aliasing").strong());
             let aa = ui.add(
-                Slider::new(&mut self.aa, 1..=prism::limits::MAX_AA)
+                Slider::new(&mut self.aa, SLIDERS.aa)
                     .clamping(SliderClamping::Always)
                     .text("level N (N×N)"),
             );
             let adaptive = ui.checkbox(&mut self.adaptive, "adaptive sampling");
             let tol = ui.add_enabled(
                 self.adaptive,
-                Slider::new(&mut self.tolerance, 0.0005..=0.05)
+                Slider::new(&mut self.tolerance, SLIDERS.tolerance)
                     .logarithmic(true)
                     .clamping(SliderClamping::Always)
                     .text("tolerance"),
@@ -115,7 +135,7 @@ impl PanelState {
             let mut eta = self.scene.objects[i].material.eta.unwrap_or(1.0);
             let r = ui.add(
                 // The whole range a file may give, on a log scale centred on 1.
-                Slider::new(&mut eta, ETA)
+                Slider::new(&mut eta, SLIDERS.eta)
                     .logarithmic(true)
                     .clamping(SliderClamping::Always)
                     .max_decimals(4)
@@ -135,7 +155,7 @@ impl PanelState {
             let name = self.scene.objects[i].name.clone();
             let mut t = self.scene.objects[i].material.transparency;
             let r = ui.add(
-                Slider::new(&mut t, 0.0..=1.0)
+                Slider::new(&mut t, SLIDERS.transparency)
                     .clamping(SliderClamping::Always)
                     .text(&name),
             );
@@ -169,12 +189,12 @@ impl PanelState {
         }
         ui.add(Slider::new(&mut c.yaw, -180.0..=180.0).text("yaw °"));
         ui.add(
-            Slider::new(&mut c.pitch, -MAX_PITCH..=MAX_PITCH)
+            Slider::new(&mut c.pitch, SLIDERS.pitch)
                 .clamping(SliderClamping::Always)
                 .text("pitch °"),
         );
         ui.add(
-            Slider::new(&mut c.vfov, VFOV)
+            Slider::new(&mut c.vfov, SLIDERS.vfov)
                 .logarithmic(true)
                 .clamping(SliderClamping::Always)
                 .text("field of view °"),
@@ -218,4 +238,117 @@ fn status_lines(ui: &mut egui::Ui, s: &Status) {
         "active pixels: {} of {}",
         s.active_pixels, s.total_pixels
     ));
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use prism::render::{AdaptiveSettings, RenderSettings};
+
+    /// The values just inside and just outside a range's ends.
+    fn ends(r: &RangeInclusive<f32>) -> [(f32, bool); 4] {
+        let (lo, hi) = (*r.start(), *r.end());
+        [
+            (lo, true),
+            (hi, true),
+            (lo.next_down(), false),
+            (hi.next_up(), false),
+        ]
+    }
+
+    #[test]
+    fn every_slider_spans_exactly_what_the_edits_and_settings_accept() {
+        let mut scene = prism::seed::scene().unwrap();
+        let glass = scene
+            .objects
+            .iter()
+            .position(|o| o.material.eta.is_some())
+            .unwrap();
+        for (eta, ok) in ends(&SLIDERS.eta) {
+            assert_eq!(scene.set_eta(glass, eta).is_ok(), ok, "eta {eta}");
+        }
+        for (t, ok) in ends(&SLIDERS.transparency) {
+            assert_eq!(
+                scene.set_transparency(glass, t).is_ok(),
+                ok,
+                "transparency {t}"
+            );
+        }
+        for (pitch, ok) in ends(&SLIDERS.pitch) {
+            let c = prism::camera::Camera {
+                pitch,
+                ..scene.camera
+            };
+            assert_eq!(check_camera(&c).is_ok(), ok, "pitch {pitch}");
+        }
+        for (vfov, ok) in ends(&SLIDERS.vfov) {
+            let c = prism::camera::Camera {
+                vfov,
+                ..scene.camera
+            };
+            assert_eq!(check_camera(&c).is_ok(), ok, "field of view {vfov}");
+        }
+        let (lo, hi) = (*SLIDERS.aa.start(), *SLIDERS.aa.end());
+        for (aa, ok) in [(lo, true), (hi, true), (lo - 1, false), (hi + 1, false)] {
+            let s = RenderSettings::new(8, 8, aa);
+            assert_eq!(s.validate().is_ok(), ok, "aa {aa}");
+        }
+        for (tolerance, ok) in ends(&SLIDERS.tolerance) {
+            let mut s = RenderSettings::new(8, 8, 2);
+            s.adaptive = Some(AdaptiveSettings {
+                tolerance,
+                ..AdaptiveSettings::default()
+            });
+            assert_eq!(s.validate().is_ok(), ok, "tolerance {tolerance}");
+        }
+    }
+
+    #[test]
+    fn the_file_takes_what_the_sliders_span() {
+        // The scene file's own bounds at the same ends: eta, transparency, pitch, fov, aa.
+        let parse = |camera: &str, render: &str, material: &str| {
+            let camera = if camera.starts_with("fov") {
+                camera.to_string()
+            } else {
+                format!("fov = 40\n{camera}")
+            };
+            let text = format!(
+                "[camera]\neye = [0, 0, 0]\n{camera}\n[render]\n{render}\n\
+                 [materials.m]\n{material}\n[[spheres]]\ncenter = [0, 0, -5]\nradius = 1\n\
+                 material = \"m\"\n"
+            );
+            let path = std::path::Path::new("walk.toml");
+            prism::scene::parse_scene(&text, path, std::path::Path::new(".")).is_ok()
+        };
+        let show = |v: f32| format!("{v:e}");
+        for (eta, ok) in ends(&SLIDERS.eta) {
+            let m = format!("transparency = 0.5\neta = {}", show(eta));
+            assert_eq!(parse("", "", &m), ok, "eta {eta}");
+        }
+        for (t, ok) in ends(&SLIDERS.transparency) {
+            assert_eq!(
+                parse("", "", &format!("transparency = {}", show(t))),
+                ok,
+                "{t}"
+            );
+        }
+        for (pitch, ok) in ends(&SLIDERS.pitch) {
+            assert_eq!(
+                parse(&format!("pitch = {}", show(pitch)), "", ""),
+                ok,
+                "{pitch}"
+            );
+        }
+        for (vfov, ok) in ends(&SLIDERS.vfov) {
+            assert_eq!(
+                parse(&format!("fov = {}", show(vfov)), "", ""),
+                ok,
+                "{vfov}"
+            );
+        }
+        let (lo, hi) = (*SLIDERS.aa.start(), *SLIDERS.aa.end());
+        for (aa, ok) in [(lo, true), (hi, true), (lo - 1, false), (hi + 1, false)] {
+            assert_eq!(parse("", &format!("aa = {aa}"), ""), ok, "aa {aa}");
+        }
+    }
 }

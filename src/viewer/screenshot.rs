@@ -13,7 +13,7 @@ pub fn save(dir: &Path, rgba: &[u8], width: u32, height: u32, spp: f64) -> Resul
         .collect();
     let image = image::RgbImage::from_raw(width, height, rgb).context("no image to save yet")?;
     let path = dir.join(file_name(SystemTime::now(), spp));
-    Ok(prism::render::output::write_png(&path, &image)?)
+    Ok(prism::render::write_png(&path, &image)?)
 }
 
 /// `prism-YYYY-MM-DD_HH-MM-SS.mmmZ-<spp>spp.png`, in UTC so names sort by time.
