@@ -34,7 +34,7 @@ pub use light_buffer::MAX_OCCLUDERS;
 
 use crate::appearance::ShadowFilters;
 use crate::camera::CameraRays;
-use crate::geometry::{Aabb, Ray, RayQuery, ShapeHit};
+use crate::geometry::{Aabb, Ray, RayQuery, ShapeHit, SurfacePoint};
 use glam::{Vec3, Vec3A};
 
 /// Which shortcuts the layer builds. Every one leaves every image unchanged
@@ -161,6 +161,28 @@ impl Accelerator {
     #[inline]
     pub fn primitive(&self, index: u32) -> &Primitive {
         &self.primitives[index as usize]
+    }
+
+    /// The surface point of `hit`, found along `q`: where shading happens.
+    #[inline]
+    pub fn surface(&self, q: &RayQuery, hit: &Hit) -> SurfacePoint {
+        self.primitives[hit.primitive as usize]
+            .shape
+            .surface(q, &hit.shape)
+    }
+
+    /// The texture coordinates of `surface`, the surface point of `hit`.
+    #[inline]
+    pub fn uv(&self, surface: &SurfacePoint, hit: &Hit) -> (f32, f32) {
+        self.primitives[hit.primitive as usize]
+            .shape
+            .uv(surface, &hit.shape)
+    }
+
+    /// The object `hit` is on.
+    #[inline]
+    pub fn object(&self, hit: &Hit) -> u32 {
+        self.primitives[hit.primitive as usize].object
     }
 
     /// Every primitive, in the order hits name them.

@@ -9,8 +9,7 @@ pub use light::PointLight;
 pub use material::{Material, reflect, refract};
 pub use texture::{ImageTexture, Texture, TextureError};
 
-use crate::scene::Scene;
-use glam::Vec3A;
+use glam::{Vec3, Vec3A};
 
 /// The appearance of a prepared scene: one material per object, the lights, the ambient
 /// light and the background, and what they imply for shadow rays.
@@ -56,16 +55,22 @@ impl ShadowFilters {
 }
 
 impl Appearance {
-    /// The appearance of `scene`'s objects and lights.
-    pub fn new(scene: &Scene) -> Self {
-        let materials: Vec<Material> = scene.objects.iter().map(|o| o.material.clone()).collect();
+    /// One material per object (in the objects' order), the lights, the ambient light,
+    /// the background and the most bounces along one path.
+    pub fn new(
+        materials: Vec<Material>,
+        lights: Vec<PointLight>,
+        ambient: Vec3,
+        background: Vec3,
+        max_depth: u32,
+    ) -> Self {
         Self {
             shadow: ShadowFilters::new(&materials),
             materials,
-            lights: scene.lights.clone(),
-            ambient: scene.ambient.into(),
-            background: scene.background.into(),
-            max_depth: scene.render.max_depth,
+            lights,
+            ambient: ambient.into(),
+            background: background.into(),
+            max_depth,
         }
     }
 

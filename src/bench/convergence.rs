@@ -39,9 +39,66 @@ struct Size {
     reference_aa: u32,
 }
 
+/// A way of sampling the seed scene, compared by the bench.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Strategy {
+    /// The seed's supersampling: 2×2 subsamples at the cell centres, one finished image.
+    SeedGrid,
+    /// N×N subsamples at the cell centres, one finished image per N.
+    FixedGrid,
+    /// The viewer's mode: one jittered subsample of an 8×8 pattern per pass.
+    Progressive,
+    /// `Progressive` at the cell centres.
+    ProgressiveCentres,
+    /// `Progressive` with adaptive stopping.
+    Adaptive,
+    /// `Adaptive` at the cell centres.
+    AdaptiveCentres,
+}
+
+impl Strategy {
+    const ALL: [Strategy; 6] = [
+        Strategy::SeedGrid,
+        Strategy::FixedGrid,
+        Strategy::Progressive,
+        Strategy::ProgressiveCentres,
+        Strategy::Adaptive,
+        Strategy::AdaptiveCentres,
+    ];
+
+    /// What the table, the CSV and the plot call it.
+    fn name(self) -> &'static str {
+        match self {
+            Strategy::SeedGrid => "seed 2×2 grid",
+            Strategy::FixedGrid => "fixed N×N grid",
+            Strategy::Progressive => "progressive",
+            Strategy::ProgressiveCentres => "progressive, cell centres",
+            Strategy::Adaptive => "adaptive",
+            Strategy::AdaptiveCentres => "adaptive, cell centres",
+        }
+    }
+
+    /// Whether the error is measured after every pass rather than once finished.
+    fn every_pass(self) -> bool {
+        !matches!(self, Strategy::SeedGrid | Strategy::FixedGrid)
+    }
+
+    /// The plot's colour.
+    fn color(self) -> RGBColor {
+        match self {
+            Strategy::SeedGrid => RGBColor(200, 0, 0),
+            Strategy::FixedGrid => RGBColor(230, 140, 0),
+            Strategy::Progressive => RGBColor(0, 90, 200),
+            Strategy::ProgressiveCentres => RGBColor(120, 170, 240),
+            Strategy::Adaptive => RGBColor(0, 150, 60),
+            Strategy::AdaptiveCentres => RGBColor(130, 210, 130),
+        }
+    }
+}
+
 /// One measurement: a strategy's image after some passes.
 struct Point {
-    strategy: String,
+    strategy: Strategy,
     passes: u32,
     samples_per_pixel: f64,
     seconds: f64,
@@ -84,39 +141,27 @@ pub fn run(cfg: Config) -> Result<()> {
         edge_samples: cfg.edge_samples,
         edge_contrast: cfg.edge_contrast,
     });
-    // (name, settings, measured after every pass rather than once finished)
-    let mut strategies = vec![(
-        "seed 2×2 grid",
-        settings(2, SampleLayout::Grid, None),
-        false,
-    )];
+    // Each strategy with the settings of each image it makes.
+    let mut strategies = vec![(Strategy::SeedGrid, settings(2, SampleLayout::Grid, None))];
     for n in [1, 2, 3, 4, 6, 8] {
-        strategies.push((
-            "fixed N×N grid",
-            settings(n, SampleLayout::Grid, None),
-            false,
-        ));
+        strategies.push((Strategy::FixedGrid, settings(n, SampleLayout::Grid, None)));
     }
     strategies.extend([
         (
-            "progressive",
+            Strategy::Progressive,
             settings(8, SampleLayout::Stratified, None),
-            true,
         ),
         (
-            "progressive, cell centres",
+            Strategy::ProgressiveCentres,
             settings(8, SampleLayout::Grid, None),
-            true,
         ),
         (
-            "adaptive",
+            Strategy::Adaptive,
             settings(8, SampleLayout::Stratified, adaptive),
-            true,
         ),
         (
-            "adaptive, cell centres",
+            Strategy::AdaptiveCentres,
             settings(8, SampleLayout::Grid, adaptive),
-            true,
         ),
     ]);
 
@@ -129,7 +174,7 @@ pub fn run(cfg: Config) -> Result<()> {
     let mut elapsed: Vec<Vec<Vec<f64>>> = vec![Vec::new(); strategies.len()];
     for run in 0..cfg.runs {
         eprintln!("timing run {} of {}", run + 1, cfg.runs);
-        for ((_, settings, _), runs) in strategies.iter().zip(&mut elapsed) {
+        for ((_, settings), runs) in strategies.iter().zip(&mut elapsed) {
             let mut job = ProgressiveRender::new(prepared.clone(), scene.camera, *settings);
             let mut seconds = 0.0;
             let mut cumulative = Vec::new();
@@ -151,10 +196,10 @@ pub fn run(cfg: Config) -> Result<()> {
     // Error: one untimed replay of each strategy. A render depends only on the scene, the
     // settings and the pass index, so the replay's images are the timed runs' images.
     let mut points = Vec::new();
-    for ((strategy, settings, every_pass), runs) in strategies.iter().zip(&elapsed) {
-        let mut job = ProgressiveRender::new(prepared.clone(), scene.camera, *settings);
+    for (&(strategy, settings), runs) in strategies.iter().zip(&elapsed) {
+        let mut job = ProgressiveRender::new(prepared.clone(), scene.camera, settings);
         while let PassOutcome::Finished(_) = job.step(&NEVER) {
-            if !(*every_pass || job.is_converged()) {
+            if !(strategy.every_pass() || job.is_converged()) {
                 continue;
             }
             let pass = job.passes_done() as usize;
@@ -163,10 +208,11 @@ pub fn run(cfg: Config) -> Result<()> {
             let seconds = times[times.len() / 2];
             let (rmse, flip) = errors(job.accumulator(), &reference, &reference_rgb8);
             eprintln!(
-                "{strategy:>26}: pass {pass:>2}, {seconds:>7.3} s, RMSE {rmse:.5}, FLIP {flip:.5}"
+                "{:>26}: pass {pass:>2}, {seconds:>7.3} s, RMSE {rmse:.5}, FLIP {flip:.5}",
+                strategy.name()
             );
             points.push(Point {
-                strategy: strategy.to_string(),
+                strategy,
                 passes: job.passes_done(),
                 samples_per_pixel: job.samples_per_pixel(),
                 seconds,
@@ -273,7 +319,12 @@ fn write_csv(path: &Path, points: &[Point]) -> Result<()> {
         writeln!(
             csv,
             "{},{},{:.4},{:.6},{:.6},{:.6}",
-            p.strategy, p.passes, p.samples_per_pixel, p.seconds, p.rmse, p.flip
+            p.strategy.name(),
+            p.passes,
+            p.samples_per_pixel,
+            p.seconds,
+            p.rmse,
+            p.flip
         )?;
     }
     prism::render::write_bytes(path, csv.as_bytes())?;
@@ -281,22 +332,6 @@ fn write_csv(path: &Path, points: &[Point]) -> Result<()> {
 }
 
 fn plot(path: &Path, points: &[Point]) -> Result<()> {
-    let strategies = [
-        "seed 2×2 grid",
-        "fixed N×N grid",
-        "progressive",
-        "progressive, cell centres",
-        "adaptive",
-        "adaptive, cell centres",
-    ];
-    let colors = [
-        RGBColor(200, 0, 0),
-        RGBColor(230, 140, 0),
-        RGBColor(0, 90, 200),
-        RGBColor(120, 170, 240),
-        RGBColor(0, 150, 60),
-        RGBColor(130, 210, 130),
-    ];
     let root = SVGBackend::new(path, (1100, 460)).into_drawing_area();
     root.fill(&WHITE)?;
     let (left, right) = root.split_horizontally(550);
@@ -325,15 +360,16 @@ fn plot(path: &Path, points: &[Point]) -> Result<()> {
             .x_desc("seconds (2 threads, log)")
             .y_desc(format!("{name} against the reference (log)"))
             .draw()?;
-        for (strategy, color) in strategies.iter().zip(colors) {
+        for strategy in Strategy::ALL {
+            let color = strategy.color();
             let series: Vec<(f64, f64)> = points
                 .iter()
-                .filter(|p| p.strategy == *strategy)
+                .filter(|p| p.strategy == strategy)
                 .map(|p| (p.seconds, value(p)))
                 .collect();
             chart
                 .draw_series(LineSeries::new(series.clone(), color.stroke_width(2)))?
-                .label(*strategy)
+                .label(strategy.name())
                 .legend(move |(x, y)| {
                     PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
                 });
@@ -381,44 +417,6 @@ fn pass_seconds_with(
     times[times.len() / 2]
 }
 
-/// Median seconds of an edit that makes one sphere of `scene` glass: preparing the whole
-/// scene again, and changing the material in a running render's appearance.
-fn edit_seconds(scene: &Scene, w: u32, h: u32, runs: usize) -> (f64, f64) {
-    let mut edited = scene.clone();
-    edited.objects[0].material.transparency = 0.5;
-    edited.objects[0].material.eta = Some(1.5);
-    let material = edited.objects[0].material.clone();
-    let median = |mut times: Vec<f64>| {
-        times.sort_by(f64::total_cmp);
-        times[times.len() / 2]
-    };
-    let rebuild = median(
-        (0..runs)
-            .map(|_| {
-                let start = Instant::now();
-                std::hint::black_box(PreparedScene::new(&edited));
-                start.elapsed().as_secs_f64()
-            })
-            .collect(),
-    );
-    let mut job = ProgressiveRender::new(
-        Arc::new(PreparedScene::new(scene)),
-        scene.camera,
-        RenderSettings::new(w, h, 1),
-    );
-    let edit = median(
-        (0..runs)
-            .map(|_| {
-                let material = material.clone();
-                let start = Instant::now();
-                job.edit_appearance(|a| a.set_material(0, material));
-                start.elapsed().as_secs_f64()
-            })
-            .collect(),
-    );
-    (rebuild, edit)
-}
-
 /// Where the reference images are cached between runs: the user's cache folder
 /// ($XDG_CACHE_HOME or ~/.cache), else the system's temporary folder.
 fn cache_dir() -> PathBuf {
@@ -429,7 +427,7 @@ fn cache_dir() -> PathBuf {
     base.join("prism/bench")
 }
 
-fn first_below<'a>(points: &'a [Point], strategy: &str, flip: f64) -> Option<&'a Point> {
+fn first_below(points: &[Point], strategy: Strategy, flip: f64) -> Option<&Point> {
     points
         .iter()
         .find(|p| p.strategy == strategy && p.flip <= flip)
@@ -453,9 +451,37 @@ fn headline(
         md,
         "Seed scene, {w}×{h}, reference {n}×{n} subsamples. Made by `cargo run --release -- bench convergence{}`; \
          medians of {runs} runs on a shared 2-core machine.\n",
-        if cfg.quick { " --quick" } else { "" },
+        if cfg.quick {
+            " --quick"
+        } else {
+            " --out docs/benchmarks"
+        },
         n = size.reference_aa
     )?;
+    speed_section(&mut md, cfg, scene, prepared, rays, ray_seconds, size)?;
+    shortcuts_section(&mut md, cfg, scene, prepared, size)?;
+    grid_error_section(&mut md, points)?;
+    resolution_section(&mut md, cfg, scene, prepared)?;
+    object_count_section(&mut md, cfg, size)?;
+    writeln!(
+        md,
+        "\n![Error against time](convergence.svg)\n\nThe curves are in `convergence.csv`."
+    )?;
+    Ok(md)
+}
+
+/// The headline table: one pass, rays per second, the two-thread speed-up.
+fn speed_section(
+    md: &mut String,
+    cfg: &Config,
+    scene: &Scene,
+    prepared: &Arc<PreparedScene>,
+    rays: RayCounts,
+    ray_seconds: f64,
+    size: &Size,
+) -> Result<()> {
+    let runs = cfg.runs;
+    let (w, h) = (size.width, size.height);
     let pass = pass_seconds(prepared, scene.camera, w, h, runs);
     writeln!(md, "| measure | value |\n|---|---|")?;
     writeln!(
@@ -484,6 +510,19 @@ fn headline(
         pass * 1e3
     )?;
 
+    Ok(())
+}
+
+/// What each shortcut buys: the same pass with one of them turned off.
+fn shortcuts_section(
+    md: &mut String,
+    cfg: &Config,
+    scene: &Scene,
+    prepared: &Arc<PreparedScene>,
+    size: &Size,
+) -> Result<()> {
+    let runs = cfg.runs;
+    let (w, h) = (size.width, size.height);
     // What each shortcut buys: the same pass with one of them turned off.
     writeln!(
         md,
@@ -553,10 +592,15 @@ fn headline(
         )?;
     }
 
+    Ok(())
+}
+
+/// How soon each progressive strategy reaches the 4×4 grid's error.
+fn grid_error_section(md: &mut String, points: &[Point]) -> Result<()> {
     // Time to reach the error of the full 4×4 grid.
     let grid4 = points
         .iter()
-        .find(|p| p.strategy == "fixed N×N grid" && p.passes == 16)
+        .find(|p| p.strategy == Strategy::FixedGrid && p.passes == 16)
         .context("the 4×4 grid was measured")?;
     writeln!(
         md,
@@ -572,24 +616,31 @@ fn headline(
         "| fixed 4×4 grid | {:.3} s | 16 | 100% |",
         grid4.seconds
     )?;
-    for strategy in [
-        "progressive",
-        "progressive, cell centres",
-        "adaptive",
-        "adaptive, cell centres",
-    ] {
+    for strategy in Strategy::ALL.into_iter().filter(|s| s.every_pass()) {
+        let name = strategy.name();
         match first_below(points, strategy, grid4.flip) {
             Some(p) => writeln!(
                 md,
-                "| {strategy} | {:.3} s | {:.2} | {:.0}% |",
+                "| {name} | {:.3} s | {:.2} | {:.0}% |",
                 p.seconds,
                 p.samples_per_pixel,
                 p.seconds / grid4.seconds * 100.0
             )?,
-            None => writeln!(md, "| {strategy} | not reached | | |")?,
+            None => writeln!(md, "| {name} | not reached | | |")?,
         }
     }
 
+    Ok(())
+}
+
+/// The cost of a pass against the image size.
+fn resolution_section(
+    md: &mut String,
+    cfg: &Config,
+    scene: &Scene,
+    prepared: &Arc<PreparedScene>,
+) -> Result<()> {
+    let runs = cfg.runs;
     writeln!(
         md,
         "\n## Cost against resolution (one pass)\n\n| image | time | per pixel |\n|---|---|---|"
@@ -609,6 +660,13 @@ fn headline(
         )?;
     }
 
+    Ok(())
+}
+
+/// The cost of a pass against the number of objects.
+fn object_count_section(md: &mut String, cfg: &Config, size: &Size) -> Result<()> {
+    let runs = cfg.runs;
+    let (w, h) = (size.width, size.height);
     writeln!(
         md,
         "\n## Cost against object count (one pass, {w}×{h}, `sphere_field` scenes)\n\n\
@@ -636,25 +694,5 @@ fn headline(
             t / base
         )?;
     }
-    let spheres = *counts.last().expect("a count");
-    let (rebuild, edit) = edit_seconds(&sphere_field(spheres), w, h, runs);
-    writeln!(
-        md,
-        "\n## An appearance edit (`sphere_field({spheres})`, {w}×{h}, median)\n\n\
-         One sphere becomes glass (transparency 0.5, eta 1.5), as a viewer slider does. \
-         Before the geometry was kept apart from the appearance, every edit prepared the \
-         scene again (shapes, BVH, light buffers); now it changes the material table in \
-         place and restarts the accumulation, and the geometry (and the view's first-hit \
-         tiles) stay as they are.\n\n\
-         | edit | time |\n|---|---|\n\
-         | prepare the scene again (before) | {:.2} ms |\n\
-         | change the table in place and restart (now) | {:.3} ms |\n",
-        rebuild * 1e3,
-        edit * 1e3,
-    )?;
-    writeln!(
-        md,
-        "\n![Error against time](convergence.svg)\n\nThe curves are in `convergence.csv`."
-    )?;
-    Ok(md)
+    Ok(())
 }

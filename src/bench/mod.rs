@@ -1,6 +1,7 @@
 //! `prism bench`: measurements that back the figures in docs/.
 
 mod convergence;
+mod edit;
 mod numerics;
 mod scenes;
 
@@ -41,6 +42,19 @@ pub enum BenchKind {
         #[arg(long, default_value_t = prism::render::AdaptiveSettings::default().edge_contrast)]
         edge_contrast: f32,
     },
+    /// What an appearance edit costs against preparing the scene again
+    /// (docs/benchmarks/edit.md).
+    Edit {
+        /// 1,000 spheres and a 160×120 render: proves the bench works in a second.
+        #[arg(long)]
+        quick: bool,
+        /// Where edit.md goes (default: prism-bench/edit in the working directory).
+        #[arg(long)]
+        out: Option<std::path::PathBuf>,
+        /// Timed runs per figure (the median is reported).
+        #[arg(long, default_value_t = 9)]
+        runs: usize,
+    },
     /// Numerical accuracy tables (docs/numerics.md).
     Numerics {
         /// Timed runs per configuration (the median is reported).
@@ -57,6 +71,11 @@ pub fn run(args: BenchArgs) -> Result<()> {
 fn run_in_pool(args: BenchArgs) -> Result<()> {
     match args.what {
         BenchKind::Numerics { runs } => numerics::run(runs.max(1)),
+        BenchKind::Edit { quick, out, runs } => edit::run(edit::Config {
+            quick,
+            runs: runs.max(1),
+            out_dir: out.unwrap_or_else(|| std::path::Path::new("prism-bench").join("edit")),
+        }),
         BenchKind::Convergence {
             quick,
             out,

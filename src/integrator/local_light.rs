@@ -15,7 +15,7 @@ impl Integrator<'_> {
         if !(opacity > 0.0 || material.specular > 0.0) {
             return Vec3A::ZERO;
         }
-        let object = self.geometry.object(at.primitive.object);
+        let object = self.geometry.object(at.object);
         let p = at.surface.point;
         let n = at.n;
         let uv = if !material.texture.needs_uv() {
@@ -23,7 +23,7 @@ impl Integrator<'_> {
         } else if let Some(planar) = object.planar_uv {
             planar.uv(p)
         } else {
-            at.primitive.shape.uv(&at.surface, &at.hit.shape)
+            self.accel().uv(&at.surface, at.hit)
         };
         let base = material.texture.eval(uv, p - object.origin);
         if !material.texture.needs_uv() {
@@ -44,7 +44,7 @@ impl Integrator<'_> {
             let l = to_light / distance;
             let origin = self.leave(&at.surface, n, l);
             self.counts.shadow += 1;
-            let leaving = (at.entering || object.flat).then_some(at.primitive.object);
+            let leaving = (at.entering || object.flat).then_some(at.object);
             let visible = accel.light_reaching(light_index, position, origin, leaving, filters);
             self.signature.shadow(visible);
             if visible == Vec3A::ZERO {

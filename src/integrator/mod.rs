@@ -11,7 +11,7 @@ mod transmission;
 
 pub use signature::Signature;
 
-use crate::accel::{Accelerator, Hit, Primitive, Reach};
+use crate::accel::{Accelerator, Hit, Reach};
 use crate::appearance::{Appearance, Material};
 use crate::geometry::{Ray, RayQuery, SurfacePoint};
 use crate::numerics::offset_ray_origin;
@@ -94,7 +94,8 @@ struct Shading<'s> {
     /// The ray that arrived.
     q: &'s RayQuery,
     hit: &'s Hit,
-    primitive: &'s Primitive,
+    /// The object hit.
+    object: u32,
     material: &'s Material,
     surface: SurfacePoint,
     /// Whether the ray arrives from the side the surface normal faces.
@@ -189,14 +190,14 @@ impl<'a> Integrator<'a> {
     fn shade(&mut self, q: &RayQuery, hit: &Hit, path: Path) -> Vec3A {
         self.signature
             .surface(hit.primitive, hit.shape.detail.part());
-        let primitive = self.accel().primitive(hit.primitive);
-        let material = self.appearance.material(primitive.object);
-        let surface = primitive.shape.surface(q, &hit.shape);
+        let object = self.accel().object(hit);
+        let material = self.appearance.material(object);
+        let surface = self.accel().surface(q, hit);
         let entering = q.ray.dir.dot(surface.normal) < 0.0;
         let at = Shading {
             q,
             hit,
-            primitive,
+            object,
             material,
             // Shade the side the ray arrives on.
             n: if entering {
@@ -235,7 +236,7 @@ impl<'a> Integrator<'a> {
     #[inline]
     fn inside(&self, at: &Shading, dir: Vec3A) -> Option<u32> {
         self.accel()
-            .isolated_solid(at.primitive.object)
+            .isolated_solid(at.object)
             .filter(|_| dir.dot(at.surface.normal) < 0.0)
     }
 }

@@ -27,7 +27,13 @@ impl PreparedScene {
     pub fn with_options(scene: &Scene, options: AccelOptions) -> Self {
         Self {
             geometry: Arc::new(Geometry::new(scene, options)),
-            appearance: Appearance::new(scene),
+            appearance: Appearance::new(
+                scene.objects.iter().map(|o| o.material.clone()).collect(),
+                scene.lights.clone(),
+                scene.ambient,
+                scene.background,
+                scene.render.max_depth,
+            ),
         }
     }
 }
