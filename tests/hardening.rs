@@ -769,3 +769,30 @@ fn the_longest_ray_chain_spends_the_budget_within_a_small_stack() {
         .expect("the chain fits in the stack");
     assert_eq!(counts.secondary, prism::limits::RAY_BUDGET as u64);
 }
+
+#[test]
+fn every_field_error_points_at_the_fields_own_line() {
+    // Each scene has one bad value; the error names the line that holds it (marked `# <-`),
+    // not its table's header. Spans come from the parsed file, not from searching its text.
+    use prism::scene::parse_scene;
+    let cases = [
+        "[camera]\neye = [0, 0, 0]\nfov = 40\n\n[[spheres]]\nname = \"a\"\ncenter = [0, 0, -5]\n\
+         radius = -1 # <-\n",
+        "[camera]\neye = [0, 0, 0]\nfov = 40\n\n[[polygons]]\nvertices = [\n  [0, 0, -5],\n  \
+         [1, 0, -5],\n  [1e300, 0, -5], # <-\n]\n",
+        "[camera]\neye = [0, 0, 0]\nfov = 40\nup = [0, 1, 0]\nlook_at = [0, 0, 0] # <-\n",
+        "[camera]\neye = [0, 0, 0]\nfov = 40\n\ndirection = [0, 1, 0] # <-\n",
+        "[camera]\neye = [0, 0, 0]\nfov = 40\n\n[[tetrahedra]]\nname = \"flat\"\n\n\
+         vertices = [[0, 0, -5], [1, 0, -5], [0, 1, -5], [1, 1, -5]] # <-\n",
+        "[camera]\neye = [0, 0, 0]\nfov = 40\n\n[[spheres]]\ncenter = [0, 0, -5]\nradius = 1\n\
+         material = \"nowhere\" # <-\n",
+        "[camera]\neye = [0, 0, 0]\nfov = 40\n\n[materials.m]\ncolor = [1, 0, 0]\n\
+         texture = \"t\" # <-\n\n[[spheres]]\ncenter = [0, 0, -5]\nradius = 1\nmaterial = \"m\"\n",
+        "[camera]\neye = [0, 0, 0]\nfov = 40\n\n[render]\nwidth = 64\n\naa = 99 # <-\n",
+    ];
+    for text in cases {
+        let marked = text.lines().position(|l| l.contains("# <-")).unwrap() + 1;
+        let error = parse_scene(text, Path::new("lines.toml"), Path::new(".")).unwrap_err();
+        assert_eq!(error.line(), Some(marked), "{error}\n{text}");
+    }
+}

@@ -206,3 +206,32 @@ fn an_appearance_edit_keeps_the_geometry_and_draws_what_a_fresh_preparation_draw
     );
     assert_ne!(job.accumulator(), unedited.accumulator(), "the edit shows");
 }
+
+#[test]
+fn light_ambient_background_and_depth_edits_draw_what_a_fresh_preparation_draws() {
+    // Each edit in place in a running render, against the edited description prepared anew.
+    let settings = RenderSettings::new(64, 48, 1);
+    let base = prism::seed::scene().unwrap();
+    let mut edited = base.clone();
+    edited.lights[0].color = glam::Vec3::new(1.0, 0.6, 0.3);
+    edited.ambient = glam::Vec3::new(0.05, 0.1, 0.3);
+    edited.background = glam::Vec3::new(0.2, 0.3, 0.5);
+    edited.render.max_depth = 1;
+    let mut job =
+        ProgressiveRender::new(Arc::new(PreparedScene::new(&base)), base.camera, settings);
+    job.step(&NEVER);
+    job.edit_appearance(|a| {
+        a.set_light_color(0, edited.lights[0].color);
+        a.set_ambient(edited.ambient);
+        a.set_background(edited.background);
+        a.set_max_depth(edited.render.max_depth);
+    });
+    while let PassOutcome::Finished(_) = job.step(&NEVER) {}
+    let fresh = render::render(
+        Arc::new(PreparedScene::new(&edited)),
+        edited.camera,
+        settings,
+        |_, _| {},
+    );
+    assert_eq!(job.accumulator(), fresh.accumulator());
+}

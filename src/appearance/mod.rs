@@ -91,6 +91,30 @@ impl Appearance {
         self.shadow.any_transmission = self.materials.iter().any(|m| m.transparency > 0.0);
     }
 
+    /// Sets light `light`'s colour (intensity per channel, already validated). Its position
+    /// is geometry: the acceleration layer's light buffers are built for it.
+    ///
+    /// # Panics
+    /// If there is no such light.
+    pub fn set_light_color(&mut self, light: usize, color: Vec3) {
+        self.lights[light].color = color;
+    }
+
+    /// Sets the ambient light.
+    pub fn set_ambient(&mut self, ambient: Vec3) {
+        self.ambient = ambient.into();
+    }
+
+    /// Sets what a ray that leaves the scene sees.
+    pub fn set_background(&mut self, background: Vec3) {
+        self.background = background.into();
+    }
+
+    /// Sets the most bounces along one path.
+    pub fn set_max_depth(&mut self, max_depth: u32) {
+        self.max_depth = max_depth;
+    }
+
     /// What shadow rays see of each surface.
     #[inline]
     pub fn shadow_filters(&self) -> &ShadowFilters {

@@ -4,7 +4,7 @@ mod render;
 
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
-use prism::render::{OutputError, RenderSettings, SettingsError};
+use prism::render::{OutputError, SettingsError};
 use prism::scene::{Scene, SceneError};
 use std::path::PathBuf;
 
@@ -97,7 +97,8 @@ fn exit_on_signals() -> Result<()> {
 fn view(args: ViewArgs) -> Result<()> {
     // Everything that can be wrong with the input is reported before a window opens.
     let scene = load_scene_or_seed(args.scene.as_deref())?;
-    let settings = RenderSettings::for_scene(&scene.render, args.width, args.height, args.aa)?;
+    let settings =
+        prism::render::RenderSettings::for_scene(&scene.render, args.width, args.height, args.aa)?;
     crate::viewer::run(crate::viewer::Launch {
         scene,
         settings,
@@ -169,6 +170,7 @@ mod tests {
     /// What the flags let through at their ends, the renderer accepts.
     #[test]
     fn the_settings_accept_the_flags_extremes() {
+        use prism::render::RenderSettings;
         let defaults = prism::scene::RenderDefaults::default();
         for side in [*IMAGE_SIDE.start(), *IMAGE_SIDE.end()] {
             for aa in [*AA.start(), *AA.end()] {

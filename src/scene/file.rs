@@ -573,7 +573,11 @@ impl Validator<'_> {
             add("tetrahedra", i, t.span(), &d.name, &d.material, &|at| {
                 let v = self.vertices(at, &d.vertices)?;
                 if !has_volume(&v) {
-                    return Err(self.error(at, "the four vertices lie in one plane (no volume)"));
+                    return Err(self.field_error(
+                        at,
+                        "vertices",
+                        "the four vertices lie in one plane (no volume)",
+                    ));
                 }
                 let faces = [[0, 1, 2], [0, 1, 3], [0, 2, 3], [1, 2, 3]];
                 if !faces
@@ -706,13 +710,24 @@ impl Validator<'_> {
         if crate::numerics::try_normalize(direction).is_none() {
             return Err(self.field_error(
                 &at,
-                "direction",
+                if c.look_at.is_some() {
+                    "look_at"
+                } else {
+                    "direction"
+                },
                 format!("the view direction {direction} has zero length"),
             ));
         }
+        // The view is given by `look_at` or by `direction`: point at the one given.
+        let view = if c.look_at.is_some() {
+            "look_at"
+        } else {
+            "direction"
+        };
         let camera = Camera::looking_along_up(eye, direction, up, vfov).ok_or_else(|| {
-            self.error(
+            self.field_error(
                 &at,
+                view,
                 format!(
                     "the view direction {direction} is within 1° of `up` {up}: choose another `up`"
                 ),
