@@ -57,6 +57,11 @@ pub const REFLECTANCE: RangeInclusive<f32> = 0.0..=1.0;
 /// brighter than white (high dynamic range), up to this per channel.
 pub const MAX_RADIANCE: f32 = 1.0e4;
 
+/// An inverse-square light's intensity (its colour's multiplier one scene unit away): enough
+/// for a light 10¹² units off (the farthest position) to light a surface, and the gain near
+/// the light is capped (`appearance::MAX_FALLOFF_GAIN`), so every product stays finite.
+pub const MAX_LIGHT_INTENSITY: f32 = 1.0e30;
+
 /// Phong's ambient, diffuse and specular factors: above 1 brightens a surface on purpose
 /// (a glowing lamp), but not without bound.
 pub const MAX_PHONG_FACTOR: f32 = 1.0e3;

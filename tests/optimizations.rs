@@ -47,10 +47,17 @@ fn skipping_faint_secondary_rays_changes_no_pixel_beyond_rounding() {
 fn opaque_scenes_take_the_any_hit_shadow_shortcut_unchanged() {
     // Without transparent objects, shadow rays stop at the first occluder without looking
     // at materials; forcing the general path must give the same image.
+    // A sun as well as the seed's light: its shadow rays run to infinity.
     let mut scene = seed();
     for o in &mut scene.objects {
         o.material.transparency = 0.0;
     }
+    scene.lights.push(prism::appearance::Light {
+        kind: prism::appearance::LightKind::Directional {
+            direction: glam::Vec3::new(0.3, -1.0, -0.4).normalize(),
+        },
+        color: glam::Vec3::new(0.4, 0.35, 0.3),
+    });
     let shortcut = prepared(&scene, |_| {});
     assert!(!shortcut.appearance.shadow_filters().any_transmission());
     let general = prepared(&scene, |o| o.any_hit_shadows = false);
@@ -108,18 +115,26 @@ fn light_buffers_draw_the_image_the_bvh_draws() {
     // and tints shadows through several surfaces.
     use glam::Vec3;
     use prism::accel::MAX_OCCLUDERS;
+    use prism::appearance::Light;
     use prism::appearance::Material;
-    use prism::appearance::PointLight;
     use prism::appearance::Texture;
     use prism::scene::{SceneObject, ShapeDesc};
 
     let seed = seed();
     let mut among = seed.clone();
-    among.lights.push(PointLight {
-        position: Vec3::new(0.0, -5.0, -70.0),
-        color: Vec3::new(0.5, 0.4, 0.3),
-    });
+    among.lights.push(Light::point(
+        Vec3::new(0.0, -5.0, -70.0),
+        Vec3::new(0.5, 0.4, 0.3),
+    ));
     let mut beads = seed.clone();
+    // A sun too: it has no buffer, and its shadow rays (tinted by the beads) run to infinity
+    // through the BVH on both paths.
+    beads.lights.push(prism::appearance::Light {
+        kind: prism::appearance::LightKind::Directional {
+            direction: glam::Vec3::new(-0.2, -1.0, 0.1).normalize(),
+        },
+        color: glam::Vec3::splat(0.3),
+    });
     for i in 0..60 {
         let a = i as f32 * 0.7;
         beads.objects.push(SceneObject {

@@ -110,7 +110,7 @@ fn earth_centre_carries_the_texture_colour_lit_by_phong() {
         panic!("the earth is image textured");
     };
     let texel = glam::Vec3::from(image.sample(u, v));
-    let l = (scene.lights[0].position - hit).normalize();
+    let l = (scene.lights[0].position().unwrap() - hit).normalize();
     let expected = texel * (0.2 + n.dot(l).max(0.0));
     assert!(
         (seen - expected).abs().max_element() < 2e-3,
@@ -123,7 +123,7 @@ fn earth_centre_carries_the_texture_colour_lit_by_phong() {
 fn shadow_of_the_mirror_sphere_is_darker_than_its_lit_neighbour() {
     let scene = seed();
     // Project the mirror sphere's centre from the light onto the floor y = −15.
-    let light = scene.lights[0].position;
+    let light = scene.lights[0].position().unwrap();
     let c = Vec3::new(-5.0, 0.0, -100.0);
     let t = (light.y + 15.0) / (light.y - c.y);
     let shadow = light + (c - light) * t;
@@ -139,7 +139,7 @@ fn shadow_of_the_mirror_sphere_is_darker_than_its_lit_neighbour() {
 #[test]
 fn green_sphere_casts_a_lighter_green_tinted_shadow() {
     let scene = seed();
-    let light = scene.lights[0].position;
+    let light = scene.lights[0].position().unwrap();
     let c = Vec3::new(-9.0, -10.0, -60.0);
     let t = (light.y + 15.0) / (light.y - c.y);
     let in_shadow = light + (c - light) * t;

@@ -138,7 +138,9 @@ fn world_space_f32_would_lose_accuracy_far_away() {
         let mut s = scene.clone();
         s.camera.eye += off;
         for l in &mut s.lights {
-            l.position += off;
+            if let prism::appearance::LightKind::Point { position, .. } = &mut l.kind {
+                *position += off;
+            }
         }
         for o in &mut s.objects {
             o.shape = o.shape.transformed(1.0, off);

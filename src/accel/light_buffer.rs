@@ -473,7 +473,10 @@ mod tests {
     fn seed() -> (Accelerator, Vec3) {
         let scene = crate::seed::scene().unwrap();
         let geometry = Geometry::new(&scene, AccelOptions::ALL);
-        (geometry.accel().clone(), scene.lights[0].position)
+        (
+            geometry.accel().clone(),
+            scene.lights[0].position().unwrap(),
+        )
     }
 
     /// A small deterministic generator for test points.

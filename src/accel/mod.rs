@@ -72,6 +72,16 @@ impl AccelOptions {
     };
 }
 
+/// Where a shadow ray goes: to a point light, or away along a direction to a light
+/// infinitely far off.
+#[derive(Clone, Copy, Debug)]
+pub enum Toward {
+    /// A point light at this position; the ray ends there.
+    Point(Vec3A),
+    /// A directional light, this unit direction away (against the way its light travels).
+    Direction(Vec3A),
+}
+
 /// The nearest surface a ray meets.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Hit {
@@ -108,18 +118,19 @@ pub struct Accelerator {
     bvh: Bvh,
     /// For each object, its primitive when the object is an isolated solid.
     isolated: Vec<Option<u32>>,
-    /// One per light, in the scene's order (empty without the option).
-    light_buffers: Vec<LightBuffer>,
+    /// One per point light, by the light's index (none for a directional light, and none
+    /// without the option).
+    light_buffers: Vec<Option<LightBuffer>>,
     options: AccelOptions,
 }
 
 impl Accelerator {
-    /// Builds the layer over `primitives` (of `object_count` objects) for point lights at
-    /// `lights`.
+    /// Builds the layer over `primitives` (of `object_count` objects) for lights at
+    /// `lights` (a point light's position; None for a light with no position).
     pub fn build(
         primitives: Vec<Primitive>,
         object_count: usize,
-        lights: &[Vec3],
+        lights: &[Option<Vec3>],
         options: AccelOptions,
     ) -> Self {
         let bounds: Vec<Aabb> = primitives.iter().map(|p| p.shape.bounds()).collect();
@@ -138,7 +149,7 @@ impl Accelerator {
         let light_buffers = if options.light_buffers {
             lights
                 .iter()
-                .map(|&light| LightBuffer::new(light, &primitives))
+                .map(|light| light.map(|position| LightBuffer::new(position, &primitives)))
                 .collect()
         } else {
             Vec::new()
@@ -207,9 +218,9 @@ impl Accelerator {
         self.isolated[object as usize]
     }
 
-    /// Light `light`'s buffer, when the option built one.
+    /// Light `light`'s buffer, when the option built one (point lights only).
     pub fn light_buffer(&self, light: usize) -> Option<&LightBuffer> {
-        self.light_buffers.get(light)
+        self.light_buffers.get(light)?.as_ref()
     }
 
     /// What primary rays of an image of `width` × `height` pixels seen through `rays` can
@@ -284,11 +295,11 @@ impl Accelerator {
         best
     }
 
-    /// The fraction of the light of point light `light`, at `position`, that reaches
-    /// `origin`: the shadow ray from `origin` to the light, tinted by every transparent
-    /// surface it crosses (`filters`). The light's buffer answers where it lists the ray's
-    /// direction, else the BVH; both give the same answer. `position` must be where the
-    /// layer was built to see light `light` (a light that moves is a geometry change).
+    /// The fraction of the light of light `light` that reaches `origin`: the shadow ray
+    /// from `origin` towards it (`toward`), tinted by every transparent surface it crosses
+    /// (`filters`). For a point light, the light's buffer answers where it lists the ray's
+    /// direction, else the BVH; both give the same answer. A point light's position must be
+    /// where the layer was built to see it (a light that moves is a geometry change).
     ///
     /// `leaving` names the object whose surface the ray starts on, when it leaves from the
     /// outside towards a light on that side (or from either side of a flat object). Every
@@ -299,16 +310,38 @@ impl Accelerator {
     pub fn light_reaching(
         &self,
         light: usize,
-        position: Vec3A,
+        toward: Toward,
         origin: Vec3A,
         leaving: Option<u32>,
         filters: &ShadowFilters,
     ) -> Vec3A {
-        let to_light = position - origin;
         let opaque = self.options.any_hit_shadows && !filters.any_transmission();
+        match toward {
+            Toward::Point(position) => {
+                self.point_light_reaching(light, position, origin, leaving, opaque, filters)
+            }
+            Toward::Direction(dir) => {
+                let q = RayQuery::new(Ray::new(origin, dir));
+                self.transmittance(&q, f32::INFINITY, opaque, filters)
+            }
+        }
+    }
+
+    /// `light_reaching` for point light `light` at `position`.
+    #[inline(always)]
+    fn point_light_reaching(
+        &self,
+        light: usize,
+        position: Vec3A,
+        origin: Vec3A,
+        leaving: Option<u32>,
+        opaque: bool,
+        filters: &ShadowFilters,
+    ) -> Vec3A {
+        let to_light = position - origin;
         // The shadow ray ends exactly at the light: t = 1 on (light − origin).
         let shadow = |to_light| RayQuery::new(Ray::new(origin, to_light));
-        if let Some(buffer) = self.light_buffers.get(light)
+        if let Some(Some(buffer)) = self.light_buffers.get(light)
             && let Some(listed) = buffer.at((-to_light).into())
         {
             debug_assert_eq!(
@@ -334,10 +367,22 @@ impl Accelerator {
             }
             return light;
         }
-        let q = shadow(to_light);
+        self.transmittance(&shadow(to_light), 1.0, opaque, filters)
+    }
+
+    /// The fraction of light that reaches the end of the segment (0, t_max) of `q` by
+    /// traversal: zero behind any opaque surface, tinted by every transparent one.
+    #[inline]
+    fn transmittance(
+        &self,
+        q: &RayQuery,
+        t_max: f32,
+        opaque: bool,
+        filters: &ShadowFilters,
+    ) -> Vec3A {
         let mut light = Vec3A::ONE;
-        self.bvh.visit(&q, 1.0, |i| {
-            self.pass_through(i, &q, 1.0, opaque, filters, &mut light)
+        self.bvh.visit(q, t_max, |i| {
+            self.pass_through(i, q, t_max, opaque, filters, &mut light)
         });
         light
     }

@@ -5,7 +5,7 @@ mod light;
 mod material;
 mod texture;
 
-pub use light::PointLight;
+pub use light::{Falloff, Light, LightKind, MAX_FALLOFF_GAIN};
 pub use material::{Material, reflect, refract};
 pub use texture::{ImageTexture, Texture, TextureError};
 
@@ -17,7 +17,7 @@ use glam::{Vec3, Vec3A};
 pub struct Appearance {
     materials: Vec<Material>,
     shadow: ShadowFilters,
-    lights: Vec<PointLight>,
+    lights: Vec<Light>,
     /// Read at every hit and miss, so kept in the hot path's SIMD form.
     ambient: Vec3A,
     background: Vec3A,
@@ -59,7 +59,7 @@ impl Appearance {
     /// the background and the most bounces along one path.
     pub fn new(
         materials: Vec<Material>,
-        lights: Vec<PointLight>,
+        lights: Vec<Light>,
         ambient: Vec3,
         background: Vec3,
         max_depth: u32,
@@ -121,9 +121,9 @@ impl Appearance {
         &self.shadow
     }
 
-    /// The point lights.
+    /// The lights.
     #[inline]
-    pub fn lights(&self) -> &[PointLight] {
+    pub fn lights(&self) -> &[Light] {
         &self.lights
     }
 

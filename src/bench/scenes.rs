@@ -1,8 +1,8 @@
 //! Scenes made for measuring: many spheres, for the cost against object count.
 
 use glam::{DVec3, Vec3};
+use prism::appearance::Light;
 use prism::appearance::Material;
-use prism::appearance::PointLight;
 use prism::appearance::Texture;
 use prism::camera::Camera;
 use prism::scene::{RenderDefaults, Scene, SceneObject, ShapeDesc};
@@ -64,10 +64,10 @@ pub fn sphere_field(n: usize) -> Scene {
         render: RenderDefaults::default(),
         background: Vec3::new(0.1, 0.1, 0.15),
         ambient: Vec3::splat(0.2),
-        lights: vec![PointLight {
-            position: Vec3::new(side, side * 2.0, side * 0.5),
-            color: Vec3::ONE,
-        }],
+        lights: vec![Light::point(
+            Vec3::new(side, side * 2.0, side * 0.5),
+            Vec3::ONE,
+        )],
         objects,
     }
 }

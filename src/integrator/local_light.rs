@@ -2,7 +2,8 @@
 //! specular terms from every light a shadow ray reaches.
 
 use super::{Integrator, Shading};
-use crate::appearance::reflect;
+use crate::accel::Toward;
+use crate::appearance::{Falloff, LightKind, reflect};
 use glam::Vec3A;
 
 impl Integrator<'_> {
@@ -34,8 +35,16 @@ impl Integrator<'_> {
         let accel = self.accel();
         let filters = self.appearance.shadow_filters();
         for (light_index, light) in self.appearance.lights().iter().enumerate() {
-            let position = Vec3A::from(light.position);
-            let to_light = position - p;
+            // The direction to the light (to a point light, unnormalised) and how it fades.
+            let (to_light, point, falloff) = match light.kind {
+                LightKind::Point { position, falloff } => {
+                    let position = Vec3A::from(position);
+                    (position - p, Some(position), falloff)
+                }
+                LightKind::Directional { direction } => {
+                    (-Vec3A::from(direction), None, Falloff::None)
+                }
+            };
             let n_dot = n.dot(to_light);
             if n_dot <= 0.0 {
                 continue; // the light is behind this side: no shadow ray needed
@@ -45,12 +54,19 @@ impl Integrator<'_> {
             let origin = self.leave(&at.surface, n, l);
             self.counts.shadow += 1;
             let leaving = (at.entering || object.flat).then_some(at.object);
-            let visible = accel.light_reaching(light_index, position, origin, leaving, filters);
+            let toward = match point {
+                Some(position) => Toward::Point(position),
+                None => Toward::Direction(l),
+            };
+            let visible = accel.light_reaching(light_index, toward, origin, leaving, filters);
             self.signature.shadow(visible);
             if visible == Vec3A::ZERO {
                 continue;
             }
-            let lit = visible * Vec3A::from(light.color);
+            let mut lit = visible * Vec3A::from(light.color);
+            if let Falloff::InverseSquare { .. } = falloff {
+                lit *= falloff.gain(distance);
+            }
             diffuse += lit * base * (material.diffuse * n_dot / distance);
             if material.specular > 0.0 {
                 let r = reflect(-l, n);

@@ -2,7 +2,7 @@
 //! of the scene file loader, so preparing a `Scene` cannot fail.
 
 use crate::appearance::Material;
-use crate::appearance::PointLight;
+use crate::appearance::{Falloff, Light, LightKind};
 use crate::camera::Camera;
 use crate::geometry::Aabb;
 use glam::{DVec3, Vec3};
@@ -24,7 +24,7 @@ pub struct Scene {
     /// Ambient light, multiplied by each material's `ambient` factor and colour.
     pub ambient: Vec3,
     /// The point lights.
-    pub lights: Vec<PointLight>,
+    pub lights: Vec<Light>,
     /// The objects, in the file's order.
     pub objects: Vec<SceneObject>,
 }
@@ -181,14 +181,21 @@ impl Scene {
 
     /// The same scene uniformly scaled about the world origin by `scale`, then moved by `offset`,
     /// camera and lights included: it must render the same image (the numerical stress
-    /// tests rely on this). Lights do not fall off with distance, so their colours stay.
+    /// tests rely on this). A light without falloff keeps its colour; an inverse-square one
+    /// scales its intensity with the square of the scale.
     pub fn transformed(&self, scale: f32, offset: DVec3) -> Scene {
         let mut scene = self.clone();
         // world' = world·s + offset, so origin' = origin·s + offset and relative' = relative·s.
         scene.origin = self.origin * scale as f64 + offset;
         scene.camera.eye = self.camera.eye * scale;
         for light in &mut scene.lights {
-            light.position *= scale;
+            // Inverse-square light keeps its brightness where the distances scale with it.
+            if let LightKind::Point { position, falloff } = &mut light.kind {
+                *position *= scale;
+                if let Falloff::InverseSquare { intensity } = falloff {
+                    *intensity *= scale * scale;
+                }
+            }
         }
         for object in &mut scene.objects {
             object.shape = object.shape.transformed(scale, Vec3::ZERO);

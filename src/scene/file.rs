@@ -5,7 +5,7 @@ use super::description::{RenderDefaults, Scene, SceneObject, ShapeDesc};
 use super::error::{SceneError, line_column};
 use super::spans::FieldSpans;
 use crate::appearance::Material;
-use crate::appearance::PointLight;
+use crate::appearance::{Falloff, Light, LightKind};
 use crate::appearance::{ImageTexture, Texture, TextureError};
 use crate::camera::Camera;
 use crate::limits;
@@ -71,8 +71,13 @@ struct RenderDef {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct LightDef {
-    position: P3,
+    #[serde(rename = "type")]
+    kind: Option<String>,
+    position: Option<P3>,
+    direction: Option<V3>,
     color: Option<V3>,
+    falloff: Option<String>,
+    intensity: Option<f32>,
 }
 
 #[derive(Deserialize)]
@@ -462,6 +467,92 @@ impl Validator<'_> {
         }
     }
 
+    fn light(&self, at: &Item, l: &LightDef) -> Result<Light, SceneError> {
+        let kind = l.kind.as_deref().unwrap_or("point");
+        let refuse = |field: &str, given: bool| {
+            if given {
+                Err(self.field_error(
+                    at,
+                    field,
+                    format!("`{field}` does not apply to a {kind} light"),
+                ))
+            } else {
+                Ok(())
+            }
+        };
+        let kind = match kind {
+            "point" => {
+                refuse("direction", l.direction.is_some())?;
+                let position = l
+                    .position
+                    .ok_or_else(|| self.error(at, "a point light needs `position`"))?;
+                let falloff = match l.falloff.as_deref().unwrap_or("none") {
+                    "none" => {
+                        if l.intensity.is_some() {
+                            return Err(self.field_error(
+                                at,
+                                "intensity",
+                                "`intensity` needs `falloff = \"inverse_square\"` (without \
+                                 falloff, `color` alone sets the brightness)",
+                            ));
+                        }
+                        Falloff::None
+                    }
+                    "inverse_square" => Falloff::InverseSquare {
+                        intensity: self.in_range(
+                            at,
+                            "intensity",
+                            l.intensity.unwrap_or(1.0),
+                            0.0,
+                            limits::MAX_LIGHT_INTENSITY,
+                        )?,
+                    },
+                    other => {
+                        return Err(self.field_error(
+                            at,
+                            "falloff",
+                            format!(
+                                "unknown falloff {} (expected \"none\" or \"inverse_square\")",
+                                quoted(other)
+                            ),
+                        ));
+                    }
+                };
+                LightKind::Point {
+                    position: self.position(at, "position", position)?,
+                    falloff,
+                }
+            }
+            "directional" => {
+                refuse("position", l.position.is_some())?;
+                refuse("falloff", l.falloff.is_some())?;
+                refuse("intensity", l.intensity.is_some())?;
+                let direction = l
+                    .direction
+                    .ok_or_else(|| self.error(at, "a directional light needs `direction`"))?;
+                let direction = self.point(at, "direction", direction)?;
+                let direction = crate::numerics::try_normalize(direction).ok_or_else(|| {
+                    self.field_error(at, "direction", "`direction` has zero length")
+                })?;
+                LightKind::Directional { direction }
+            }
+            other => {
+                return Err(self.field_error(
+                    at,
+                    "type",
+                    format!(
+                        "unknown light type {} (expected \"point\" or \"directional\")",
+                        quoted(other)
+                    ),
+                ));
+            }
+        };
+        Ok(Light {
+            kind,
+            color: self.radiance(at, "color", l.color.unwrap_or([1.0; 3]))?,
+        })
+    }
+
     fn scene(&self, file: SceneFile) -> Result<Scene, SceneError> {
         let camera = self.camera(&file.camera)?;
         let (render, background, ambient) = self.render(file.render.as_ref())?;
@@ -475,11 +566,7 @@ impl Validator<'_> {
                     span: l.span(),
                     name: &name,
                 };
-                let l = l.get_ref();
-                Ok(PointLight {
-                    position: self.position(&at, "position", l.position)?,
-                    color: self.radiance(&at, "color", l.color.unwrap_or([1.0; 3]))?,
-                })
+                self.light(&at, l.get_ref())
             })
             .collect::<Result<Vec<_>, SceneError>>()?;
         self.check_texel_budget(&file.textures)?;

@@ -128,7 +128,7 @@ impl Geometry {
                 ),
             });
         }
-        let lights: Vec<Vec3> = scene.lights.iter().map(|l| l.position).collect();
+        let lights: Vec<Option<Vec3>> = scene.lights.iter().map(|l| l.position()).collect();
         let accel = Accelerator::build(primitives, objects.len(), &lights, options);
         Self { accel, objects }
     }

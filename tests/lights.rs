@@ -1,0 +1,174 @@
+//! Lights beyond the seed's: inverse-square falloff and directional (sun) light, against
+//! analytic values, under scaling, and every bad light refused with its line.
+
+use glam::Vec3;
+use prism::accel::Reach;
+use prism::geometry::Ray;
+use prism::integrator::Integrator;
+use prism::scene::{PreparedScene, Scene, parse_scene};
+use std::path::Path;
+
+/// A white matte floor (y = 0), no ambient light, and `lights` (TOML) above it, with an
+/// optional sphere.
+fn floor_scene(lights: &str, sphere: &str) -> Scene {
+    let text = format!(
+        "[camera]\neye = [0, 10, 10]\nlook_at = [0, 0, 0]\nfov = 40\n\n\
+         [render]\nambient = [0, 0, 0]\n\n{lights}\n\n\
+         [materials.matte]\ncolor = [1, 1, 1]\nspecular = 0\n\n\
+         [[polygons]]\nname = \"floor\"\nmaterial = \"matte\"\n\
+         vertices = [[-50, 0, 50], [50, 0, 50], [50, 0, -50], [-50, 0, -50]]\n{sphere}"
+    );
+    parse_scene(&text, Path::new("lights.toml"), Path::new(".")).unwrap()
+}
+
+/// The colour of the floor at world position `p`, seen from straight above.
+fn floor_at(scene: &Scene, p: Vec3) -> Vec3 {
+    let prepared = PreparedScene::new(scene);
+    let mut integrator = Integrator::new(&prepared, 0.0);
+    // The scene's positions are relative to its origin (the camera's eye).
+    let p = p - scene.origin.as_vec3();
+    let eye = p + Vec3::new(0.0, 0.5, 0.0);
+    integrator
+        .trace_primary(Reach::After(0.0), || Ray::new(eye, Vec3::NEG_Y))
+        .color
+}
+
+fn assert_close(found: Vec3, expected: f32, what: &str) {
+    for c in found.to_array() {
+        assert!(
+            (c - expected).abs() <= 1e-5 * expected.abs().max(1.0),
+            "{what}: {found} against {expected}"
+        );
+    }
+}
+
+#[test]
+fn inverse_square_light_falls_off_with_distance_and_angle() {
+    // A light 2 above the origin, intensity 8: I·cosθ / d² = I·h / d³ on the floor.
+    let scene = floor_scene(
+        "[[lights]]\nposition = [0, 2, 0]\nfalloff = \"inverse_square\"\nintensity = 8",
+        "",
+    );
+    assert_close(floor_at(&scene, Vec3::ZERO), 8.0 / 4.0, "below the light");
+    for x in [1.0f32, 2.0, 5.0] {
+        let d = (4.0 + x * x).sqrt();
+        let expected = 8.0 * 2.0 / (d * d * d);
+        assert_close(floor_at(&scene, Vec3::new(x, 0.0, 0.0)), expected, "aside");
+    }
+    // Without falloff the same light is cosθ at any distance (the seed's lights).
+    let flat = floor_scene("[[lights]]\nposition = [0, 2, 0]", "");
+    let d = (4.0f32 + 25.0).sqrt();
+    assert_close(
+        floor_at(&flat, Vec3::new(5.0, 0.0, 0.0)),
+        2.0 / d,
+        "no falloff",
+    );
+}
+
+#[test]
+fn a_directional_light_lights_by_angle_and_casts_parallel_shadows() {
+    // Sunlight at 45° (travelling along −y and −z): cos 45° everywhere on the floor, except
+    // in the shadow of a sphere, which falls 3 units towards −z of the point below it.
+    let sun = "[[lights]]\ntype = \"directional\"\ndirection = [0, -1, -1]\ncolor = [1, 1, 1]";
+    let sphere = "\n[[spheres]]\ncenter = [0, 3, 0]\nradius = 1\nmaterial = \"matte\"\n";
+    let scene = floor_scene(sun, sphere);
+    let cos = std::f32::consts::FRAC_1_SQRT_2;
+    assert_close(
+        floor_at(&scene, Vec3::new(10.0, 0.0, 0.0)),
+        cos,
+        "in the sun",
+    );
+    assert_close(
+        floor_at(&scene, Vec3::new(0.0, 0.0, -3.0)),
+        0.0,
+        "in the shadow",
+    );
+    // Far from the sphere the shadow's direction does not matter: lit again.
+    assert_close(
+        floor_at(&scene, Vec3::new(0.0, 0.0, 3.0)),
+        cos,
+        "behind the sphere",
+    );
+}
+
+#[test]
+fn an_inverse_square_scene_scaled_draws_the_same_image() {
+    // `Scene::transformed` scales the intensity with the square of the scale.
+    use prism::render::{RenderSettings, fraction_differing, render};
+    use std::sync::Arc;
+    let scene = floor_scene(
+        "[[lights]]\nposition = [2, 4, 1]\nfalloff = \"inverse_square\"\nintensity = 30",
+        "\n[[spheres]]\ncenter = [0, 1, 0]\nradius = 1\nmaterial = \"matte\"\n",
+    );
+    let image = |s: &Scene| {
+        let s = s.clone();
+        render(
+            Arc::new(PreparedScene::new(&s)),
+            s.camera,
+            RenderSettings::new(80, 60, 1),
+            |_, _| {},
+        )
+        .accumulator()
+        .to_rgb8()
+    };
+    let base = image(&scene);
+    for scale in [1e-3f32, 1e4] {
+        let scaled = scene.transformed(scale, glam::DVec3::new(1e3, 0.0, -2e3));
+        let d = fraction_differing(&base, &image(&scaled), 1);
+        assert!(d < 1e-3, "scale {scale}: {d}");
+    }
+}
+
+#[test]
+fn every_bad_light_is_refused_with_its_line() {
+    let cases = [
+        (
+            "type = \"spot\" # <-\nposition = [0, 5, 0]",
+            "unknown light type",
+        ),
+        ("color = [1, 1, 1] # <-", "needs `position`"),
+        (
+            "position = [0, 5, 0]\nintensity = 3 # <-",
+            "`intensity` needs `falloff",
+        ),
+        (
+            "position = [0, 5, 0]\nfalloff = \"linear\" # <-",
+            "unknown falloff",
+        ),
+        (
+            "position = [0, 5, 0]\nfalloff = \"inverse_square\"\nintensity = -1 # <-",
+            "`intensity` must lie in",
+        ),
+        (
+            "type = \"directional\"\ndirection = [0, 0, 0] # <-",
+            "`direction` has zero length",
+        ),
+        (
+            "type = \"directional\"\ndirection = [0, -1, 0]\nposition = [0, 5, 0] # <-",
+            "`position` does not apply to a directional light",
+        ),
+        (
+            "type = \"directional\"\ndirection = [0, -1, 0]\nfalloff = \"none\" # <-",
+            "`falloff` does not apply",
+        ),
+        (
+            "position = [0, 5, 0]\ndirection = [0, -1, 0] # <-",
+            "does not apply to a point",
+        ),
+    ];
+    for (light, message) in cases {
+        let text = format!("[camera]\neye = [0, 0, 0]\nfov = 40\n\n[[lights]]\n{light}\n");
+        let error = parse_scene(&text, Path::new("bad.toml"), Path::new(".")).unwrap_err();
+        let marked = text.lines().position(|l| l.contains("# <-")).unwrap() + 1;
+        let shown = error.to_string();
+        assert!(shown.contains(message), "{shown}");
+        assert!(shown.contains("lights[0]"), "{shown}");
+        // A missing field is the table's fault: its header's line; else the field's own.
+        let line = if message.starts_with("needs") {
+            5
+        } else {
+            marked
+        };
+        assert_eq!(error.line(), Some(line), "{shown}");
+    }
+}
