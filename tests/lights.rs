@@ -172,3 +172,44 @@ fn every_bad_light_is_refused_with_its_line() {
         assert_eq!(error.line(), Some(line), "{shown}");
     }
 }
+
+#[test]
+fn an_emitting_surface_glows_unlit_and_a_shadowless_bulb_does_not_block_its_light() {
+    // A bulb (an emitting sphere with `shadow = false`) around a point light 2 above the
+    // floor: the floor below is lit exactly as by the bare light, and the bulb, seen from
+    // above, shows its emission on top of what the light and the floor's ambient give it.
+    let lamp = "[[lights]]\nposition = [0, 2, 0]\nfalloff = \"inverse_square\"\nintensity = 8";
+    let bulb = "\n[materials.bulb]\ncolor = [1, 1, 1]\nspecular = 0\ndiffuse = 0\n\
+                emission = [0.9, 0.8, 0.5]\n\n\
+                [[spheres]]\ncenter = [0, 2, 0]\nradius = 0.3\nmaterial = \"bulb\"\n";
+    let bare = floor_scene(lamp, "");
+    let shadowless = floor_scene(lamp, &format!("{bulb}shadow = false\n"));
+    let shadowing = floor_scene(lamp, bulb);
+    let below = Vec3::ZERO;
+    assert_eq!(floor_at(&shadowless, below), floor_at(&bare, below));
+    assert_close(
+        floor_at(&shadowing, below),
+        0.0,
+        "under a bulb that casts a shadow",
+    );
+    // The top of the bulb: no diffuse term, no ambient light, so exactly its emission.
+    let top = floor_at(&shadowless, Vec3::new(0.0, 2.3, 0.0));
+    assert!(
+        (top - Vec3::new(0.9, 0.8, 0.5)).abs().max_element() < 1e-6,
+        "{top}"
+    );
+}
+
+#[test]
+fn bad_emission_and_shadow_values_are_refused_with_their_line() {
+    let base = "[camera]\neye = [0, 0, 0]\nfov = 40\n\n";
+    let emission = format!("{base}[materials.m]\nemission = [0, -1, 0] # <-\n");
+    let shadow =
+        format!("{base}[[spheres]]\ncenter = [0, 0, -5]\nradius = 1\nshadow = \"no\" # <-\n");
+    for (text, message) in [(emission, "`emission`"), (shadow, "expected a boolean")] {
+        let error = parse_scene(&text, Path::new("bad.toml"), Path::new(".")).unwrap_err();
+        let marked = text.lines().position(|l| l.contains("# <-")).unwrap() + 1;
+        assert!(error.to_string().contains(message), "{error}");
+        assert_eq!(error.line(), Some(marked), "{error}");
+    }
+}

@@ -138,6 +138,7 @@ fn light_buffers_draw_the_image_the_bvh_draws() {
     for i in 0..60 {
         let a = i as f32 * 0.7;
         beads.objects.push(SceneObject {
+            casts_shadow: true,
             name: format!("bead {i}"),
             shape: ShapeDesc::Sphere {
                 center: Vec3::new(
@@ -197,6 +198,7 @@ fn rays_inside_isolated_solids_find_what_the_bvh_finds() {
         }
     }
     variant.objects.push(SceneObject {
+        casts_shadow: true,
         name: "bead".into(),
         shape: ShapeDesc::Sphere {
             center: Vec3::new(-9.0, -10.5, -60.0),

@@ -482,6 +482,7 @@ mod tests {
         let template = crate::seed::scene().unwrap();
         let material = template.objects[0].material.clone();
         let sphere = |center: Vec3| SceneObject {
+            casts_shadow: true,
             name: "s".into(),
             shape: ShapeDesc::Sphere {
                 center,

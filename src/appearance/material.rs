@@ -25,6 +25,9 @@ pub struct Material {
     pub transparency: f32,
     /// Index of refraction of the inside; None for a surface that transmits without bending.
     pub eta: Option<f32>,
+    /// Light the surface gives off itself, added unlit (a glowing lamp, a screen); black
+    /// for the seed's materials.
+    pub emission: Vec3,
 }
 
 impl Default for Material {
@@ -38,6 +41,7 @@ impl Default for Material {
             reflectivity: 0.0,
             transparency: 0.0,
             eta: None,
+            emission: Vec3::ZERO,
         }
     }
 }

@@ -28,17 +28,40 @@ pub struct Appearance {
 #[derive(Clone, Debug)]
 pub struct ShadowFilters {
     per_object: Vec<Vec3A>,
-    /// Whether any surface transmits light; when none does, a shadow ray may stop at the
-    /// first occluder without looking at materials.
+    /// Whether each object blocks light at all (false: it lets everything through).
+    casts_shadow: Vec<bool>,
+    /// Whether any surface lets light through; when none does, a shadow ray may stop at
+    /// the first occluder without looking at materials.
     any_transmission: bool,
 }
 
 impl ShadowFilters {
-    fn new(materials: &[Material]) -> Self {
-        Self {
-            per_object: materials.iter().map(|m| m.shadow_filter().into()).collect(),
-            any_transmission: materials.iter().any(|m| m.transparency > 0.0),
+    fn new(materials: &[Material], casts_shadow: Vec<bool>) -> Self {
+        let mut filters = Self {
+            per_object: Vec::with_capacity(materials.len()),
+            casts_shadow,
+            any_transmission: false,
+        };
+        for (object, material) in materials.iter().enumerate() {
+            let filter = filters.filter(object, material);
+            filters.per_object.push(filter);
         }
+        filters.update_any(materials);
+        filters
+    }
+
+    /// What object `object`, of `material`, lets through.
+    fn filter(&self, object: usize, material: &Material) -> Vec3A {
+        if self.casts_shadow[object] {
+            material.shadow_filter().into()
+        } else {
+            Vec3A::ONE
+        }
+    }
+
+    fn update_any(&mut self, materials: &[Material]) {
+        self.any_transmission = materials.iter().any(|m| m.transparency > 0.0)
+            || self.casts_shadow.iter().any(|&casts| !casts);
     }
 
     /// What a crossing of `object`'s surface lets through.
@@ -55,17 +78,25 @@ impl ShadowFilters {
 }
 
 impl Appearance {
-    /// One material per object (in the objects' order), the lights, the ambient light,
-    /// the background and the most bounces along one path.
+    /// One material per object (in the objects' order) and whether each object casts a
+    /// shadow, the lights, the ambient light, the background and the most bounces along one
+    /// path.
+    ///
+    /// # Panics
+    /// If `casts_shadow` does not have one entry per material.
     pub fn new(
         materials: Vec<Material>,
+        casts_shadow: Vec<bool>,
         lights: Vec<Light>,
         ambient: Vec3,
         background: Vec3,
         max_depth: u32,
     ) -> Self {
         Self {
-            shadow: ShadowFilters::new(&materials),
+            shadow: {
+                assert_eq!(casts_shadow.len(), materials.len(), "one flag per object");
+                ShadowFilters::new(&materials, casts_shadow)
+            },
             materials,
             lights,
             ambient: ambient.into(),
@@ -86,9 +117,9 @@ impl Appearance {
     /// # Panics
     /// If there is no such object.
     pub fn set_material(&mut self, object: usize, material: Material) {
-        self.shadow.per_object[object] = material.shadow_filter().into();
+        self.shadow.per_object[object] = self.shadow.filter(object, &material);
         self.materials[object] = material;
-        self.shadow.any_transmission = self.materials.iter().any(|m| m.transparency > 0.0);
+        self.shadow.update_any(&self.materials);
     }
 
     /// Sets light `light`'s colour (intensity per channel, already validated). Its position

@@ -27,6 +27,7 @@ pub fn sphere_field(n: usize) -> Scene {
                 -(next() * side) - 4.0,
             );
             SceneObject {
+                casts_shadow: true,
                 name: format!("sphere {i}"),
                 shape: ShapeDesc::Sphere {
                     center,
@@ -42,6 +43,7 @@ pub fn sphere_field(n: usize) -> Scene {
         .collect();
     let half = side * 0.6;
     objects.push(SceneObject {
+        casts_shadow: true,
         name: "floor".into(),
         shape: ShapeDesc::Polygon {
             vertices: vec![

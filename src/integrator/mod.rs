@@ -208,7 +208,8 @@ impl<'a> Integrator<'a> {
             surface,
             entering,
         };
-        let mut color = self.local_light(&at);
+        // Emission is added unlit (zero for most materials: adding it costs less than a test).
+        let mut color = self.local_light(&at) + Vec3A::from(material.emission);
 
         // Reflection and refraction spend a bounce; a straight crossing does not.
         let bounces_left = path.depth < self.appearance.max_depth();

@@ -62,6 +62,9 @@ pub struct SceneObject {
     pub shape: ShapeDesc,
     /// What it is made of.
     pub material: Material,
+    /// Whether it blocks light on its way to other surfaces (false: a lamp's bulb that
+    /// does not shadow its own light). Its own surface is shaded either way.
+    pub casts_shadow: bool,
 }
 
 /// Every kind of shape a scene file describes (a closed set).

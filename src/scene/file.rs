@@ -105,6 +105,7 @@ struct MaterialDef {
     reflectivity: Option<f32>,
     transparency: Option<f32>,
     eta: Option<f32>,
+    emission: Option<V3>,
 }
 
 #[derive(Deserialize)]
@@ -114,6 +115,7 @@ struct SphereDef {
     center: P3,
     radius: f32,
     material: Option<String>,
+    shadow: Option<bool>,
 }
 
 #[derive(Deserialize)]
@@ -124,6 +126,7 @@ struct CylinderDef {
     radius: f32,
     height: f32,
     material: Option<String>,
+    shadow: Option<bool>,
 }
 
 #[derive(Deserialize)]
@@ -132,6 +135,7 @@ struct PolygonDef {
     name: Option<String>,
     vertices: Vec<P3>,
     material: Option<String>,
+    shadow: Option<bool>,
 }
 
 #[derive(Deserialize)]
@@ -140,6 +144,7 @@ struct TriangleDef {
     name: Option<String>,
     vertices: [P3; 3],
     material: Option<String>,
+    shadow: Option<bool>,
 }
 
 #[derive(Deserialize)]
@@ -148,6 +153,7 @@ struct TetrahedronDef {
     name: Option<String>,
     vertices: [P3; 4],
     material: Option<String>,
+    shadow: Option<bool>,
 }
 
 /// Reads and validates the scene file at `path`; image textures are found relative to it.
@@ -588,6 +594,7 @@ impl Validator<'_> {
                        span: Range<usize>,
                        name: &Option<String>,
                        material: &Option<String>,
+                       shadow: Option<bool>,
                        shape: &dyn Fn(&Item) -> Result<ShapeDesc, SceneError>|
          -> Result<(), SceneError> {
             let label = match name {
@@ -609,74 +616,115 @@ impl Validator<'_> {
                 name: name.clone().unwrap_or_else(|| format!("{kind} {i}")),
                 shape: shape(&at)?,
                 material,
+                casts_shadow: shadow.unwrap_or(true),
             });
             Ok(())
         };
         for (i, s) in file.spheres.iter().enumerate() {
             let d = s.get_ref();
-            add("spheres", i, s.span(), &d.name, &d.material, &|at| {
-                Ok(ShapeDesc::Sphere {
-                    center: self.position(at, "center", d.center)?,
-                    radius: self.length(at, "radius", d.radius)?,
-                })
-            })?;
+            add(
+                "spheres",
+                i,
+                s.span(),
+                &d.name,
+                &d.material,
+                d.shadow,
+                &|at| {
+                    Ok(ShapeDesc::Sphere {
+                        center: self.position(at, "center", d.center)?,
+                        radius: self.length(at, "radius", d.radius)?,
+                    })
+                },
+            )?;
         }
         for (i, c) in file.cylinders.iter().enumerate() {
             let d = c.get_ref();
-            add("cylinders", i, c.span(), &d.name, &d.material, &|at| {
-                let base = self.position(at, "base", d.base)?;
-                let height = self.length(at, "height", d.height)?;
-                // The top cap is a position too.
-                let mut top = d.base;
-                top[1] += height as f64;
-                self.position(at, "height", top)?;
-                Ok(ShapeDesc::Cylinder {
-                    base,
-                    radius: self.length(at, "radius", d.radius)?,
-                    height,
-                })
-            })?;
+            add(
+                "cylinders",
+                i,
+                c.span(),
+                &d.name,
+                &d.material,
+                d.shadow,
+                &|at| {
+                    let base = self.position(at, "base", d.base)?;
+                    let height = self.length(at, "height", d.height)?;
+                    // The top cap is a position too.
+                    let mut top = d.base;
+                    top[1] += height as f64;
+                    self.position(at, "height", top)?;
+                    Ok(ShapeDesc::Cylinder {
+                        base,
+                        radius: self.length(at, "radius", d.radius)?,
+                        height,
+                    })
+                },
+            )?;
         }
         for (i, p) in file.polygons.iter().enumerate() {
             let d = p.get_ref();
-            add("polygons", i, p.span(), &d.name, &d.material, &|at| {
-                let vertices = self.vertices(at, &d.vertices)?;
-                check_polygon(&vertices).map_err(|m| self.field_error(at, "vertices", m))?;
-                Ok(ShapeDesc::Polygon { vertices })
-            })?;
+            add(
+                "polygons",
+                i,
+                p.span(),
+                &d.name,
+                &d.material,
+                d.shadow,
+                &|at| {
+                    let vertices = self.vertices(at, &d.vertices)?;
+                    check_polygon(&vertices).map_err(|m| self.field_error(at, "vertices", m))?;
+                    Ok(ShapeDesc::Polygon { vertices })
+                },
+            )?;
         }
         for (i, t) in file.triangles.iter().enumerate() {
             let d = t.get_ref();
-            add("triangles", i, t.span(), &d.name, &d.material, &|at| {
-                let v = self.vertices(at, &d.vertices)?;
-                check_polygon(&v).map_err(|m| self.field_error(at, "vertices", m))?;
-                Ok(ShapeDesc::Triangle {
-                    vertices: [v[0], v[1], v[2]],
-                })
-            })?;
+            add(
+                "triangles",
+                i,
+                t.span(),
+                &d.name,
+                &d.material,
+                d.shadow,
+                &|at| {
+                    let v = self.vertices(at, &d.vertices)?;
+                    check_polygon(&v).map_err(|m| self.field_error(at, "vertices", m))?;
+                    Ok(ShapeDesc::Triangle {
+                        vertices: [v[0], v[1], v[2]],
+                    })
+                },
+            )?;
         }
         for (i, t) in file.tetrahedra.iter().enumerate() {
             let d = t.get_ref();
-            add("tetrahedra", i, t.span(), &d.name, &d.material, &|at| {
-                let v = self.vertices(at, &d.vertices)?;
-                if !has_volume(&v) {
-                    return Err(self.field_error(
-                        at,
-                        "vertices",
-                        "the four vertices lie in one plane (no volume)",
-                    ));
-                }
-                let faces = [[0, 1, 2], [0, 1, 3], [0, 2, 3], [1, 2, 3]];
-                if !faces
-                    .iter()
-                    .all(|&[a, b, c]| representable(v[a], v[b], v[c]))
-                {
-                    return Err(self.field_error(at, "vertices", TOO_SMALL));
-                }
-                Ok(ShapeDesc::Tetrahedron {
-                    vertices: [v[0], v[1], v[2], v[3]],
-                })
-            })?;
+            add(
+                "tetrahedra",
+                i,
+                t.span(),
+                &d.name,
+                &d.material,
+                d.shadow,
+                &|at| {
+                    let v = self.vertices(at, &d.vertices)?;
+                    if !has_volume(&v) {
+                        return Err(self.field_error(
+                            at,
+                            "vertices",
+                            "the four vertices lie in one plane (no volume)",
+                        ));
+                    }
+                    let faces = [[0, 1, 2], [0, 1, 3], [0, 2, 3], [1, 2, 3]];
+                    if !faces
+                        .iter()
+                        .all(|&[a, b, c]| representable(v[a], v[b], v[c]))
+                    {
+                        return Err(self.field_error(at, "vertices", TOO_SMALL));
+                    }
+                    Ok(ShapeDesc::Tetrahedron {
+                        vertices: [v[0], v[1], v[2], v[3]],
+                    })
+                },
+            )?;
         }
         Ok(Scene {
             origin: self.origin,
@@ -1046,6 +1094,10 @@ impl Validator<'_> {
             reflectivity: fraction("reflectivity", m.reflectivity)?,
             transparency: fraction("transparency", m.transparency)?,
             eta,
+            emission: match m.emission {
+                Some(e) => self.radiance(&at, "emission", e)?,
+                None => d.emission,
+            },
         })
     }
 }

@@ -29,6 +29,7 @@ impl PreparedScene {
             geometry: Arc::new(Geometry::new(scene, options)),
             appearance: Appearance::new(
                 scene.objects.iter().map(|o| o.material.clone()).collect(),
+                scene.objects.iter().map(|o| o.casts_shadow).collect(),
                 scene.lights.clone(),
                 scene.ambient,
                 scene.background,
