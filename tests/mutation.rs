@@ -10,12 +10,13 @@ use proptest::prelude::*;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, OnceLock};
 
-const SEEDS: [&str; 5] = [
+const SEEDS: [&str; 6] = [
     include_str!("../fuzz/corpus/seed.toml"),
     include_str!("../fuzz/corpus/shapes.toml"),
     include_str!("../fuzz/corpus/sphere.toml"),
     include_str!("../fuzz/corpus/glass-box.toml"),
     include_str!("../fuzz/corpus/lights.toml"),
+    include_str!("../fuzz/corpus/environment.toml"),
 ];
 
 /// Values that have broken renderers: overflow when squared or multiplied, underflow,

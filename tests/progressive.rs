@@ -215,7 +215,10 @@ fn light_ambient_background_and_depth_edits_draw_what_a_fresh_preparation_draws(
     let mut edited = base.clone();
     edited.lights[0].color = glam::Vec3::new(1.0, 0.6, 0.3);
     edited.ambient = glam::Vec3::new(0.05, 0.1, 0.3);
-    edited.background = glam::Vec3::new(0.2, 0.3, 0.5);
+    edited.background = prism::appearance::Background::Gradient {
+        bottom: glam::Vec3::new(0.2, 0.3, 0.5),
+        top: glam::Vec3::new(0.6, 0.7, 0.9),
+    };
     edited.render.max_depth = 1;
     let mut job =
         ProgressiveRender::new(Arc::new(PreparedScene::new(&base)), base.camera, settings);
@@ -223,7 +226,7 @@ fn light_ambient_background_and_depth_edits_draw_what_a_fresh_preparation_draws(
     job.edit_appearance(|a| {
         a.set_light_color(0, edited.lights[0].color);
         a.set_ambient(edited.ambient);
-        a.set_background(edited.background);
+        a.set_background(edited.background.clone());
         a.set_max_depth(edited.render.max_depth);
     });
     while let PassOutcome::Finished(_) = job.step(&NEVER) {}

@@ -1,10 +1,12 @@
 //! What surfaces and lights look like: materials, textures, lights, the background. Kept
 //! apart from geometry so that an edit changes a table in place and rebuilds nothing.
 
+mod background;
 mod light;
 mod material;
 mod texture;
 
+pub use background::Background;
 pub use light::{Falloff, Light, LightKind, MAX_FALLOFF_GAIN};
 pub use material::{Material, reflect, refract};
 pub use texture::{ImageTexture, Texture, TextureError};
@@ -20,7 +22,7 @@ pub struct Appearance {
     lights: Vec<Light>,
     /// Read at every hit and miss, so kept in the hot path's SIMD form.
     ambient: Vec3A,
-    background: Vec3A,
+    background: Background,
     max_depth: u32,
 }
 
@@ -89,7 +91,7 @@ impl Appearance {
         casts_shadow: Vec<bool>,
         lights: Vec<Light>,
         ambient: Vec3,
-        background: Vec3,
+        background: Background,
         max_depth: u32,
     ) -> Self {
         Self {
@@ -100,7 +102,7 @@ impl Appearance {
             materials,
             lights,
             ambient: ambient.into(),
-            background: background.into(),
+            background,
             max_depth,
         }
     }
@@ -137,8 +139,8 @@ impl Appearance {
     }
 
     /// Sets what a ray that leaves the scene sees.
-    pub fn set_background(&mut self, background: Vec3) {
-        self.background = background.into();
+    pub fn set_background(&mut self, background: Background) {
+        self.background = background;
     }
 
     /// Sets the most bounces along one path.
@@ -166,8 +168,8 @@ impl Appearance {
 
     /// What a ray that leaves the scene sees.
     #[inline]
-    pub fn background(&self) -> Vec3A {
-        self.background
+    pub fn background(&self) -> &Background {
+        &self.background
     }
 
     /// The most bounces along one path.

@@ -64,7 +64,7 @@ pub fn sphere_field(n: usize) -> Scene {
         origin: DVec3::ZERO,
         camera: Camera::looking_along(eye, target - eye, 60.0).expect("non-zero"),
         render: RenderDefaults::default(),
-        background: Vec3::new(0.1, 0.1, 0.15),
+        background: prism::appearance::Background::Solid(Vec3::new(0.1, 0.1, 0.15)),
         ambient: Vec3::splat(0.2),
         lights: vec![Light::point(
             Vec3::new(side, side * 2.0, side * 0.5),

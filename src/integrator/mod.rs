@@ -142,18 +142,22 @@ impl<'a> Integrator<'a> {
 
     /// The colour seen along a primary ray (`ray()`, of unit direction) and its signature;
     /// `reach` is what the camera view knows it can hit first
-    /// ([`crate::accel::CameraView::reach`]). A ray known to hit nothing is not built.
+    /// ([`crate::accel::CameraView::reach`]). A ray known to hit nothing is not built,
+    /// unless the background varies with direction.
     #[inline]
     pub fn trace_primary(&mut self, reach: Reach, ray: impl FnOnce() -> Ray) -> Sample {
         self.counts.primary += 1;
         self.signature = Signature::default();
-        let color = match reach {
-            Reach::Among([]) => self.miss(),
-            reach => {
+        let color = match (reach, self.appearance.background().solid()) {
+            (Reach::Among([]), Some(background)) => {
+                self.signature.miss();
+                background
+            }
+            (reach, _) => {
                 let q = RayQuery::new(ray());
                 match self.accel().nearest_hit(&q, reach) {
                     Some(hit) => self.shade(&q, &hit, Path::PRIMARY),
-                    None => self.miss(),
+                    None => self.miss(q.ray.dir),
                 }
             }
         };
@@ -173,15 +177,15 @@ impl<'a> Integrator<'a> {
         };
         match self.accel().nearest_hit(q, reach) {
             Some(hit) => self.shade(q, &hit, path),
-            None => self.miss(),
+            None => self.miss(q.ray.dir),
         }
     }
 
-    /// The colour of a ray that leaves the scene.
+    /// The colour of a ray along `dir` that leaves the scene.
     #[inline]
-    fn miss(&mut self) -> Vec3A {
+    fn miss(&mut self, dir: Vec3A) -> Vec3A {
         self.signature.miss();
-        self.appearance.background()
+        self.appearance.background().along(dir)
     }
 
     /// The colour that ray `q` brings back from `hit`: the light at the surface, plus

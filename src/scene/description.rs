@@ -2,7 +2,7 @@
 //! of the scene file loader, so preparing a `Scene` cannot fail.
 
 use crate::appearance::Material;
-use crate::appearance::{Falloff, Light, LightKind};
+use crate::appearance::{Background, Falloff, Light, LightKind};
 use crate::camera::Camera;
 use crate::geometry::Aabb;
 use glam::{DVec3, Vec3};
@@ -20,7 +20,7 @@ pub struct Scene {
     /// The image settings the file suggests.
     pub render: RenderDefaults,
     /// What a ray that leaves the scene sees.
-    pub background: Vec3,
+    pub background: Background,
     /// Ambient light, multiplied by each material's `ambient` factor and colour.
     pub ambient: Vec3,
     /// The point lights.

@@ -5,7 +5,7 @@ use super::description::{RenderDefaults, Scene, SceneObject, ShapeDesc};
 use super::error::{SceneError, line_column};
 use super::spans::FieldSpans;
 use crate::appearance::Material;
-use crate::appearance::{Falloff, Light, LightKind};
+use crate::appearance::{Background, Falloff, Light, LightKind};
 use crate::appearance::{ImageTexture, Texture, TextureError};
 use crate::camera::Camera;
 use crate::limits;
@@ -64,8 +64,17 @@ struct RenderDef {
     height: Option<i64>,
     aa: Option<i64>,
     max_depth: Option<i64>,
-    background: Option<V3>,
+    /// `[r, g, b]`, or a table: `{ bottom = …, top = … }` or `{ image = "…" }` (read by
+    /// hand, for messages that say which form was meant).
+    background: Option<toml::Value>,
     ambient: Option<V3>,
+}
+
+/// A `background` value, by form.
+enum BackgroundDef {
+    Color(V3),
+    Gradient { bottom: V3, top: V3 },
+    Image(String),
 }
 
 #[derive(Deserialize)]
@@ -561,7 +570,7 @@ impl Validator<'_> {
 
     fn scene(&self, file: SceneFile) -> Result<Scene, SceneError> {
         let camera = self.camera(&file.camera)?;
-        let (render, background, ambient) = self.render(file.render.as_ref())?;
+        let (render, ambient) = self.render(file.render.as_ref())?;
         let lights = file
             .lights
             .iter()
@@ -575,8 +584,9 @@ impl Validator<'_> {
                 self.light(&at, l.get_ref())
             })
             .collect::<Result<Vec<_>, SceneError>>()?;
-        self.check_texel_budget(&file.textures)?;
+        self.check_texel_budget(&file.textures, file.render.as_ref())?;
         let mut images = Images::default();
+        let background = self.background(file.render.as_ref(), &mut images)?;
         let textures = file
             .textures
             .iter()
@@ -743,14 +753,28 @@ impl Validator<'_> {
     fn check_texel_budget(
         &self,
         textures: &BTreeMap<String, Spanned<TextureDef>>,
+        render: Option<&Spanned<RenderDef>>,
     ) -> Result<(), SceneError> {
         let mut seen = std::collections::HashSet::new();
         let mut total = 0u64;
-        for (name, t) in textures {
-            let (span, t) = (t.span(), t.get_ref());
-            let (Some(rel), "image") = (&t.path, t.kind.as_str()) else {
-                continue;
-            };
+        // Every image the scene names: (where, the field, the path).
+        let mut images: Vec<(String, Range<usize>, &str, &str)> = textures
+            .iter()
+            .filter_map(|(name, t)| {
+                let label = format!("textures.{}", crate::messages::shown(name));
+                match (&t.get_ref().path, t.get_ref().kind.as_str()) {
+                    (Some(rel), "image") => Some((label, t.span(), "path", rel.as_str())),
+                    _ => None,
+                }
+            })
+            .collect();
+        if let Some(r) = render
+            && let Some(toml::Value::Table(t)) = &r.get_ref().background
+            && let Some(toml::Value::String(rel)) = t.get("image")
+        {
+            images.push(("render".into(), r.span(), "background", rel.as_str()));
+        }
+        for (label, span, field, rel) in images {
             let full = self.assets.locate(rel);
             if !seen.insert(full.clone()) {
                 continue;
@@ -760,11 +784,10 @@ impl Validator<'_> {
             };
             total += w as u64 * h as u64;
             if total > limits::MAX_SCENE_TEXELS {
-                let label = format!("textures.{}", crate::messages::shown(name));
                 let at = Item { span, name: &label };
                 return Err(self.field_error(
                     &at,
-                    "path",
+                    field,
                     format!(
                         "image {} brings the scene's textures to {total} texels, more than \
                          the {} all of them may have together",
@@ -874,13 +897,10 @@ impl Validator<'_> {
             .map_err(|m| self.error(&at, m))
     }
 
-    fn render(
-        &self,
-        r: Option<&Spanned<RenderDef>>,
-    ) -> Result<(RenderDefaults, Vec3, Vec3), SceneError> {
+    fn render(&self, r: Option<&Spanned<RenderDef>>) -> Result<(RenderDefaults, Vec3), SceneError> {
         let defaults = RenderDefaults::default();
         let Some(r) = r else {
-            return Ok((defaults, Vec3::ZERO, Vec3::splat(0.2)));
+            return Ok((defaults, Vec3::splat(0.2)));
         };
         let at = Item {
             span: r.span(),
@@ -918,9 +938,84 @@ impl Validator<'_> {
                 *limits::DEPTH.end() as i64,
             )?,
         };
-        let background = self.radiance(&at, "background", r.background.unwrap_or([0.0; 3]))?;
         let ambient = self.radiance(&at, "ambient", r.ambient.unwrap_or([0.2; 3]))?;
-        Ok((render, background, ambient))
+        Ok((render, ambient))
+    }
+
+    /// The `[render]` table's `background`: black when it has none.
+    fn background(
+        &self,
+        r: Option<&Spanned<RenderDef>>,
+        images: &mut Images,
+    ) -> Result<Background, SceneError> {
+        let Some(r) = r else {
+            return Ok(Background::Solid(Vec3::ZERO));
+        };
+        let at = Item {
+            span: r.span(),
+            name: "render",
+        };
+        match self.background_def(&at, r.get_ref())? {
+            None => Ok(Background::Solid(Vec3::ZERO)),
+            Some(BackgroundDef::Color(c)) => {
+                Ok(Background::Solid(self.radiance(&at, "background", c)?))
+            }
+            Some(BackgroundDef::Gradient { bottom, top }) => Ok(Background::Gradient {
+                bottom: self.radiance(&at, "background", bottom)?,
+                top: self.radiance(&at, "background", top)?,
+            }),
+            Some(BackgroundDef::Image(rel)) => images
+                .load(&self.assets, &rel)
+                .map(Background::Image)
+                .map_err(|e| self.field_error(&at, "background", e)),
+        }
+    }
+
+    /// Which form of `background` the table gives, refusing any other.
+    fn background_def(
+        &self,
+        at: &Item,
+        r: &RenderDef,
+    ) -> Result<Option<BackgroundDef>, SceneError> {
+        const FORMS: &str = "`background` takes a colour [r, g, b], \
+                             { bottom = [r, g, b], top = [r, g, b] } (a vertical gradient) or \
+                             { image = \"file\" } (a latitude-longitude image)";
+        let bad = |what: String| self.field_error(at, "background", format!("{what}; {FORMS}"));
+        let colour = |v: &toml::Value, key: &str| -> Result<V3, SceneError> {
+            v.clone()
+                .try_into::<V3>()
+                .map_err(|_| bad(format!("`{key}` is not a colour of three numbers")))
+        };
+        let Some(value) = &r.background else {
+            return Ok(None);
+        };
+        match value {
+            toml::Value::Array(_) => {
+                colour(value, "background").map(|c| Some(BackgroundDef::Color(c)))
+            }
+            toml::Value::Table(t) => {
+                if let Some(key) = t
+                    .keys()
+                    .find(|k| !["bottom", "top", "image"].contains(&k.as_str()))
+                {
+                    return Err(bad(format!("unknown key {}", quoted(key))));
+                }
+                match (t.get("image"), t.get("bottom"), t.get("top")) {
+                    (Some(toml::Value::String(rel)), None, None) => {
+                        Ok(Some(BackgroundDef::Image(rel.clone())))
+                    }
+                    (Some(_), None, None) => Err(bad("`image` is not a file name".into())),
+                    (None, Some(bottom), Some(top)) => Ok(Some(BackgroundDef::Gradient {
+                        bottom: colour(bottom, "bottom")?,
+                        top: colour(top, "top")?,
+                    })),
+                    _ => Err(bad(
+                        "a background table takes `image`, or both `bottom` and `top`".into(),
+                    )),
+                }
+            }
+            _ => Err(bad("it is neither a colour nor a table".into())),
+        }
     }
 
     fn texture(

@@ -32,7 +32,7 @@ impl PreparedScene {
                 scene.objects.iter().map(|o| o.casts_shadow).collect(),
                 scene.lights.clone(),
                 scene.ambient,
-                scene.background,
+                scene.background.clone(),
                 scene.render.max_depth,
             ),
         }
