@@ -62,6 +62,10 @@ pub const MAX_RADIANCE: f32 = 1.0e4;
 /// the light is capped (`appearance::MAX_FALLOFF_GAIN`), so every product stays finite.
 pub const MAX_LIGHT_INTENSITY: f32 = 1.0e30;
 
+/// The largest `uv_scale` and `uv_offset` of an image texture: a picture repeated a million
+/// times across a surface is already finer than any pixel.
+pub const MAX_UV_TRANSFORM: f32 = 1.0e6;
+
 /// Phong's ambient, diffuse and specular factors: above 1 brightens a surface on purpose
 /// (a glowing lamp), but not without bound.
 pub const MAX_PHONG_FACTOR: f32 = 1.0e3;

@@ -104,7 +104,7 @@ fn earth_centre_carries_the_texture_colour_lit_by_phong() {
     let hit = scene.camera.eye + dir * ((center - scene.camera.eye).length() - radius);
     let n = (hit - center).normalize();
     let (u, v) = prism::geometry::Sphere::uv(n.into());
-    let prism::appearance::Texture::Image(image) =
+    let prism::appearance::Texture::Image { image, .. } =
         &object_mut(&mut scene, "earth").material.texture
     else {
         panic!("the earth is image textured");

@@ -9,7 +9,7 @@ mod texture;
 pub use background::Background;
 pub use light::{Falloff, Light, LightKind, MAX_FALLOFF_GAIN};
 pub use material::{Material, reflect, refract};
-pub use texture::{ImageTexture, Texture, TextureError};
+pub use texture::{ImageTexture, Texture, TextureError, UvTransform};
 
 use glam::{Vec3, Vec3A};
 

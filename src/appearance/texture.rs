@@ -276,7 +276,65 @@ pub enum Texture {
         direction: Vec3,
     },
     /// An image, looked up at the shape's (u, v).
-    Image(Arc<ImageTexture>),
+    Image {
+        /// The texels.
+        image: Arc<ImageTexture>,
+        /// How the shape's (u, v) map onto the image.
+        uv: UvTransform,
+    },
+}
+
+/// How a shape's (u, v) map onto an image: rotated about the image's centre by `rotate`
+/// degrees (counter-clockwise as the picture is seen), then scaled about the centre (2
+/// shows the picture twice across and twice down), then moved by `offset` (in picture
+/// widths and heights). A transformed picture repeats in both directions; untransformed,
+/// v stops at the image's top and bottom rows (a sphere's poles).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct UvTransform {
+    /// The rotation and the scale as one matrix, row by row.
+    matrix: [f32; 4],
+    offset: [f32; 2],
+    identity: bool,
+}
+
+impl UvTransform {
+    /// (u, v) as the shape gives them.
+    pub const IDENTITY: UvTransform = UvTransform {
+        matrix: [1.0, 0.0, 0.0, 1.0],
+        offset: [0.0, 0.0],
+        identity: true,
+    };
+
+    /// Rotate by `rotate` degrees, scale by `scale`, then move by `offset`.
+    pub fn new(scale: [f32; 2], offset: [f32; 2], rotate: f32) -> UvTransform {
+        if scale == [1.0, 1.0] && offset == [0.0, 0.0] && rotate == 0.0 {
+            return Self::IDENTITY;
+        }
+        // The matrix takes a surface's (u, v) to the picture's; with v running down the
+        // picture, this turn of the lookup shows the picture turned counter-clockwise.
+        let (s, c) = rotate.to_radians().sin_cos();
+        UvTransform {
+            matrix: [scale[0] * c, -scale[0] * s, scale[1] * s, scale[1] * c],
+            offset,
+            identity: false,
+        }
+    }
+
+    /// Where (u, v) lands in the picture.
+    #[inline]
+    pub fn apply(&self, (u, v): (f32, f32)) -> (f32, f32) {
+        if self.identity {
+            return (u, v);
+        }
+        let [a, b, c, d] = self.matrix;
+        let (x, y) = (u - 0.5, v - 0.5);
+        let v = c * x + d * y + 0.5 + self.offset[1];
+        (
+            a * x + b * y + 0.5 + self.offset[0],
+            // u wraps in the lookup; v is wrapped here, so the picture repeats down too.
+            v - floor_to_int(v) as f32,
+        )
+    }
 }
 
 impl Texture {
@@ -298,13 +356,19 @@ impl Texture {
                 let band = floor_to_int(local.dot((*direction).into()) / *width);
                 colors[(band & 1) as usize].into()
             }
-            Texture::Image(img) => img.sample(uv.0, uv.1),
+            Texture::Image {
+                image,
+                uv: transform,
+            } => {
+                let (u, v) = transform.apply(uv);
+                image.sample(u, v)
+            }
         }
     }
 
     /// Whether `eval` reads the surface (u, v).
     pub fn needs_uv(&self) -> bool {
-        matches!(self, Texture::Image(_))
+        matches!(self, Texture::Image { .. })
     }
 
     /// A representative colour (the mean over the pattern).
@@ -314,7 +378,7 @@ impl Texture {
             Texture::Checker { colors, .. } | Texture::Stripes { colors, .. } => {
                 (colors[0] + colors[1]) * 0.5
             }
-            Texture::Image(img) => img.mean(),
+            Texture::Image { image, .. } => image.mean(),
         }
     }
 

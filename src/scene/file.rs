@@ -6,7 +6,7 @@ use super::error::{SceneError, line_column};
 use super::spans::FieldSpans;
 use crate::appearance::Material;
 use crate::appearance::{Background, Falloff, Light, LightKind};
-use crate::appearance::{ImageTexture, Texture, TextureError};
+use crate::appearance::{ImageTexture, Texture, TextureError, UvTransform};
 use crate::camera::Camera;
 use crate::limits;
 use crate::messages::{number, quoted};
@@ -100,6 +100,10 @@ struct TextureDef {
     axes: Option<String>,
     width: Option<f32>,
     direction: Option<V3>,
+    /// A number (both ways) or [u, v].
+    uv_scale: Option<toml::Value>,
+    uv_offset: Option<[f32; 2]>,
+    uv_rotate: Option<f32>,
 }
 
 #[derive(Deserialize)]
@@ -1018,6 +1022,49 @@ impl Validator<'_> {
         }
     }
 
+    /// An image texture's `uv_scale`, `uv_offset` and `uv_rotate`.
+    fn uv_transform(&self, at: &Item, t: &TextureDef) -> Result<UvTransform, SceneError> {
+        let most = limits::MAX_UV_TRANSFORM;
+        let scale = match &t.uv_scale {
+            None => [1.0, 1.0],
+            Some(value) => {
+                let pair = match value {
+                    toml::Value::Float(_) | toml::Value::Integer(_) => {
+                        value.clone().try_into::<f32>().ok().map(|s| [s, s])
+                    }
+                    toml::Value::Array(_) => value.clone().try_into::<[f32; 2]>().ok(),
+                    _ => None,
+                };
+                let pair = pair.ok_or_else(|| {
+                    self.field_error(at, "uv_scale", "`uv_scale` takes a number or [u, v]")
+                })?;
+                for s in pair {
+                    if !(s.is_finite() && s != 0.0 && s.abs() <= most) {
+                        return Err(self.field_error(
+                            at,
+                            "uv_scale",
+                            format!(
+                                "`uv_scale` must be non-zero and within ±{}, got {}",
+                                number(most),
+                                number(s)
+                            ),
+                        ));
+                    }
+                }
+                pair
+            }
+        };
+        let offset = match t.uv_offset {
+            None => [0.0, 0.0],
+            Some([u, v]) => [
+                self.in_range(at, "uv_offset", u, -most, most)?,
+                self.in_range(at, "uv_offset", v, -most, most)?,
+            ],
+        };
+        let rotate = self.in_range(at, "uv_rotate", t.uv_rotate.unwrap_or(0.0), -360.0, 360.0)?;
+        Ok(UvTransform::new(scale, offset, rotate))
+    }
+
     fn texture(
         &self,
         name: &str,
@@ -1032,7 +1079,7 @@ impl Validator<'_> {
         let t = t.get_ref();
         // Which fields each type reads; any other given is a mistake worth saying.
         let (kind, takes): (&str, &[&str]) = match t.kind.as_str() {
-            "image" => ("image", &["path"]),
+            "image" => ("image", &["path", "uv_scale", "uv_offset", "uv_rotate"]),
             "checker" => ("checker", &["colors", "size", "axes"]),
             "stripes" => ("stripes", &["colors", "width", "direction"]),
             other => {
@@ -1053,6 +1100,9 @@ impl Validator<'_> {
             ("axes", t.axes.is_some()),
             ("width", t.width.is_some()),
             ("direction", t.direction.is_some()),
+            ("uv_scale", t.uv_scale.is_some()),
+            ("uv_offset", t.uv_offset.is_some()),
+            ("uv_rotate", t.uv_rotate.is_some()),
         ];
         if let Some((field, _)) = given.iter().find(|(f, g)| *g && !takes.contains(f)) {
             return Err(self.field_error(
@@ -1079,9 +1129,10 @@ impl Validator<'_> {
                 let Some(rel) = &t.path else {
                     return Err(self.error(&at, "an image texture needs `path`"));
                 };
+                let uv = self.uv_transform(&at, t)?;
                 images
                     .load(&self.assets, rel)
-                    .map(Texture::Image)
+                    .map(|image| Texture::Image { image, uv })
                     .map_err(|e| self.field_error(&at, "path", e))
             }
             "checker" => {

@@ -48,11 +48,13 @@ impl PlanarUv {
         }
     }
 
-    /// (u, v) of point `p` in the polygon's plane.
+    /// (u, v) of point `p` in the polygon's plane: u along the first edge, v from the far
+    /// side down to it, so that a polygon whose corners run counter-clockwise from its
+    /// bottom-left (as its front is seen) shows a picture upright (an image's v runs down).
     #[inline]
     pub fn uv(&self, p: Vec3A) -> (f32, f32) {
         let d = p - self.origin;
-        (d.dot(self.u_axis), d.dot(self.v_axis))
+        (d.dot(self.u_axis), 1.0 - d.dot(self.v_axis))
     }
 }
 
