@@ -64,7 +64,8 @@ impl Integrator<'_> {
                 continue;
             }
             let mut lit = visible * Vec3A::from(light.color);
-            if let Falloff::InverseSquare { .. } = falloff {
+            // No falloff multiplies by exactly one: skipped, it costs nothing.
+            if falloff != Falloff::None {
                 lit *= falloff.gain(distance);
             }
             diffuse += lit * base * (material.diffuse * n_dot / distance);

@@ -87,6 +87,9 @@ pub struct Integrator<'a> {
     pub counts: RayCounts,
     /// What the primary ray being traced has met.
     signature: Signature,
+    /// The background's colour when it is the same in every direction: then a primary ray
+    /// known to hit nothing needs no ray built.
+    solid_background: Option<Vec3A>,
 }
 
 /// What shading knows at a hit.
@@ -114,6 +117,7 @@ impl<'a> Integrator<'a> {
             min_weight,
             counts: RayCounts::default(),
             signature: Signature::default(),
+            solid_background: scene.appearance.background().solid(),
         }
     }
 
@@ -148,7 +152,7 @@ impl<'a> Integrator<'a> {
     pub fn trace_primary(&mut self, reach: Reach, ray: impl FnOnce() -> Ray) -> Sample {
         self.counts.primary += 1;
         self.signature = Signature::default();
-        let color = match (reach, self.appearance.background().solid()) {
+        let color = match (reach, self.solid_background) {
             (Reach::Among([]), Some(background)) => {
                 self.signature.miss();
                 background

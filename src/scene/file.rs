@@ -685,8 +685,7 @@ impl Validator<'_> {
                 &d.material,
                 d.shadow,
                 &|at| {
-                    let vertices = self.vertices(at, &d.vertices)?;
-                    check_polygon(&vertices).map_err(|m| self.field_error(at, "vertices", m))?;
+                    let vertices = self.polygon(at, &d.vertices)?;
                     Ok(ShapeDesc::Polygon { vertices })
                 },
             )?;
@@ -701,8 +700,7 @@ impl Validator<'_> {
                 &d.material,
                 d.shadow,
                 &|at| {
-                    let v = self.vertices(at, &d.vertices)?;
-                    check_polygon(&v).map_err(|m| self.field_error(at, "vertices", m))?;
+                    let v = self.polygon(at, &d.vertices)?;
                     Ok(ShapeDesc::Triangle {
                         vertices: [v[0], v[1], v[2]],
                     })
@@ -804,6 +802,13 @@ impl Validator<'_> {
         Ok(())
     }
 
+    /// The corners of a flat convex shape (a polygon or a triangle), checked as one.
+    fn polygon(&self, at: &Item, vs: &[P3]) -> Result<Vec<Vec3>, SceneError> {
+        let vertices = self.vertices(at, vs)?;
+        check_polygon(&vertices).map_err(|m| self.field_error(at, "vertices", m))?;
+        Ok(vertices)
+    }
+
     fn vertices(&self, at: &Item, vs: &[P3]) -> Result<Vec<Vec3>, SceneError> {
         vs.iter()
             .enumerate()
@@ -869,23 +874,19 @@ impl Validator<'_> {
                 .map(|()| camera)
                 .map_err(|m| self.error(&at, m));
         };
-        if crate::numerics::try_normalize(direction).is_none() {
-            return Err(self.field_error(
-                &at,
-                if c.look_at.is_some() {
-                    "look_at"
-                } else {
-                    "direction"
-                },
-                format!("the view direction {direction} has zero length"),
-            ));
-        }
         // The view is given by `look_at` or by `direction`: point at the one given.
         let view = if c.look_at.is_some() {
             "look_at"
         } else {
             "direction"
         };
+        if crate::numerics::try_normalize(direction).is_none() {
+            return Err(self.field_error(
+                &at,
+                view,
+                format!("the view direction {direction} has zero length"),
+            ));
+        }
         let camera = Camera::looking_along_up(eye, direction, up, vfov).ok_or_else(|| {
             self.field_error(
                 &at,
