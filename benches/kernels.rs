@@ -4,7 +4,7 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use glam::Vec3;
-use prism::accel::{AccelOptions, Accelerator, Primitive, Reach};
+use prism::accel::{AccelOptions, Accelerator, Primitive, Reach, Surface};
 use prism::geometry::{Cylinder, Ray, RayQuery, Shape, Sphere, Triangle};
 use prism::integrator::Integrator;
 use prism::scene::PreparedScene;
@@ -43,7 +43,7 @@ fn bvh(c: &mut Criterion) {
         .map(|i| {
             let (x, y) = ((i % 100) as f32 * 3.0, (i / 100) as f32 * 3.0);
             Primitive {
-                shape: Shape::Sphere(Sphere::new(Vec3::new(x, y, -50.0), 1.0)),
+                surface: Surface::Shape(Shape::Sphere(Sphere::new(Vec3::new(x, y, -50.0), 1.0))),
                 object: i,
             }
         })

@@ -16,6 +16,19 @@ pub const MAX_SCENE_FILE_BYTES: u64 = 16 << 20;
 /// The largest image file read as a texture, in bytes.
 pub const MAX_TEXTURE_FILE_BYTES: u64 = 256 << 20;
 
+/// The largest mesh (OBJ) or material library (MTL) file read, in bytes: a mesh of tens
+/// of millions of triangles.
+pub const MAX_MESH_FILE_BYTES: u64 = 1 << 30;
+
+/// The most triangles the meshes of one scene may have together (each file counted once,
+/// however many objects place it): about 1.5 GiB of mesh and hierarchy.
+pub const MAX_SCENE_TRIANGLES: usize = 1 << 24;
+
+/// The factors an object's `scale` may have on each axis: enough to turn a unit model
+/// into anything from a grain to a planet, and no further, so a scaled shape's lengths
+/// stay within `MIN_LENGTH` and `MAX_COORDINATE` of sensible models.
+pub const SCALE: RangeInclusive<f64> = 1.0e-6..=1.0e6;
+
 /// The most texels one image texture may have (8192 × 8192; stored as 3 bytes each).
 pub const MAX_TEXTURE_TEXELS: u64 = 1 << 26;
 

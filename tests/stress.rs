@@ -505,3 +505,27 @@ fn seed_prepared() -> &'static PreparedScene {
     static SCENE: std::sync::OnceLock<PreparedScene> = std::sync::OnceLock::new();
     SCENE.get_or_init(|| PreparedScene::new(&seed()))
 }
+
+/// The example scene of meshes and transforms (three bunny instances, one faceted, and an
+/// ellipsoid traced through its transform) draws the same image from 10⁻⁴ to 10² times its
+/// size: the error bounds carried through transforms keep shadows and refraction free of
+/// acne. (From 10³ up, about 1.6% of pixels differ: an open defect of the instance path.)
+#[test]
+fn meshes_and_transformed_shapes_render_the_same_across_scales() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/bunny.toml");
+    let scene = load_scene(&path).unwrap();
+    let reference = render_image(&scene);
+    for k in -4..=2 {
+        let s = scene.transformed(10f32.powi(k), DVec3::ZERO);
+        let fraction = differing(&render_image(&s), &reference, 2);
+        println!(
+            "bunnies, scale 1e{k:+}: {:.4}% of pixels differ",
+            fraction * 100.0
+        );
+        assert!(
+            fraction <= 0.002,
+            "scale 1e{k}: {:.3}% differ",
+            fraction * 100.0
+        );
+    }
+}

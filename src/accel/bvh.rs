@@ -257,7 +257,7 @@ impl Bvh {
     /// Finds the closest hit. `hit(i, t_max)` tests primitive `i` (in stored order) and
     /// returns its distance when it is nearer than `t_max`. Children are visited nearest
     /// first, and one the ray enters beyond the current nearest hit is skipped.
-    #[inline]
+    #[inline(always)]
     pub fn closest(
         &self,
         q: &RayQuery,
@@ -318,7 +318,7 @@ impl Bvh {
 
     /// Visits every primitive whose leaf the segment (0, t_max) reaches, in no particular
     /// order, until `visit` returns false.
-    #[inline]
+    #[inline(always)]
     pub fn visit(&self, q: &RayQuery, t_max: f32, mut visit: impl FnMut(u32) -> bool) {
         if self.nodes.is_empty() || !traceable(q) {
             return;

@@ -9,7 +9,7 @@
 //! every primary ray (docs/benchmarks/README.md). Tiles that too many boxes cover fall
 //! back to the BVH, which then does better.
 
-use super::Primitive;
+use super::{Primitive, Surface};
 use crate::camera::CameraRays;
 use crate::geometry::Shape;
 use glam::DVec3;
@@ -67,7 +67,7 @@ impl FirstHitTiles {
         let rectangles: Vec<Option<(u32, u32, u32, u32)>> = primitives
             .iter()
             .map(|primitive| {
-                let bounds = primitive.shape.bounds();
+                let bounds = primitive.surface.bounds();
                 let (lo, hi) = (bounds.min.as_dvec3(), bounds.max.as_dvec3());
                 if !(lo.is_finite() && hi.is_finite()) {
                     Some((0, 0, tiles_x - 1, tiles_y - 1))
@@ -98,7 +98,7 @@ impl FirstHitTiles {
 
         let mut per_tile: Vec<Vec<Candidate>> = vec![Vec::new(); tile_count];
         for (index, (primitive, rectangle)) in primitives.iter().zip(&rectangles).enumerate() {
-            let bounds = primitive.shape.bounds();
+            let bounds = primitive.surface.bounds();
             let (lo, hi) = (bounds.min.as_dvec3(), bounds.max.as_dvec3());
             let Some((x0, y0, x1, y1)) = *rectangle else {
                 continue;
@@ -109,8 +109,10 @@ impl FirstHitTiles {
             };
             // A triangle covers only part of its box's rectangle: half of it, for each of
             // the two triangles of a quad such as the seed's floor.
-            let outline = match primitive.shape {
-                Shape::Triangle(t) => projected_triangle(&t, eye, forward, rays, width, height),
+            let outline = match primitive.surface {
+                Surface::Shape(Shape::Triangle(t)) => {
+                    projected_triangle(&t, eye, forward, rays, width, height)
+                }
                 _ => None,
             };
             for ty in y0..=y1 {
@@ -501,7 +503,7 @@ mod tests {
         let behind = scene
             .primitives()
             .iter()
-            .position(|p| p.shape.bounds().min.z > 0.0)
+            .position(|p| p.surface.bounds().min.z > 0.0)
             .unwrap() as u32;
         for y in 0..120 {
             for x in 0..160 {

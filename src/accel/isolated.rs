@@ -2,8 +2,8 @@
 //! primitive's box comes near. A ray that starts inside one meets nothing else before it
 //! leaves, so its next hit needs no traversal.
 
-use super::Primitive;
 use super::bvh::Bvh;
+use super::{Primitive, Surface};
 use crate::geometry::{Aabb, Shape};
 use glam::Vec3;
 
@@ -23,7 +23,10 @@ pub fn isolated_solids(
     for (index, primitive) in primitives.iter().enumerate() {
         let object = primitive.object as usize;
         count[object] += 1;
-        if matches!(primitive.shape, Shape::Sphere(_) | Shape::Cylinder(_)) {
+        if matches!(
+            primitive.surface,
+            Surface::Shape(Shape::Sphere(_) | Shape::Cylinder(_))
+        ) {
             sole[object] = Some(index as u32);
         }
     }
@@ -37,7 +40,7 @@ pub fn isolated_solids(
 
 /// Whether no other primitive's box comes within the margin of primitive `index`'s box.
 fn alone(primitives: &[Primitive], bvh: &Bvh, index: u32) -> bool {
-    let bounds = primitives[index as usize].shape.bounds();
+    let bounds = primitives[index as usize].surface.bounds();
     if !(bounds.min.is_finite() && bounds.max.is_finite()) {
         return false;
     }
@@ -51,7 +54,7 @@ fn alone(primitives: &[Primitive], bvh: &Bvh, index: u32) -> bool {
     let mut alone = true;
     // Stops at the first neighbour: among many coincident solids the search is short.
     bvh.overlapping(&near, |other| {
-        alone &= other == index || !primitives[other as usize].shape.bounds().overlaps(&near);
+        alone &= other == index || !primitives[other as usize].surface.bounds().overlaps(&near);
         alone
     });
     alone

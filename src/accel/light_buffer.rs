@@ -126,7 +126,7 @@ impl LightBuffer {
         let boxes: Vec<(DVec3, DVec3)> = primitives
             .iter()
             .map(|p| {
-                let b = p.shape.bounds();
+                let b = p.surface.bounds();
                 (b.min.as_dvec3(), b.max.as_dvec3())
             })
             .collect();
@@ -465,7 +465,7 @@ fn round_down(distance_sq: f64) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::accel::{AccelOptions, Accelerator};
+    use crate::accel::{AccelOptions, Accelerator, Surface};
     use crate::geometry::{Ray, RayQuery, Shape, Sphere};
     use crate::scene::Geometry;
 
@@ -516,7 +516,7 @@ mod tests {
                     .expect("the seed scene has no crowded cell");
                 let distance_sq = to_light.length_squared();
                 for (i, p) in scene.primitives().iter().enumerate() {
-                    if p.shape.intersect(&q, 1.0).is_some() {
+                    if p.surface.intersect(&q, 1.0).is_some() {
                         blocked += 1;
                         let entry = listed.iter().find(|o| o.primitive == i as u32);
                         let entry =
@@ -540,14 +540,14 @@ mod tests {
         // patch, so the beads spread over many cells and none is crowded.
         let beads: Vec<Primitive> = (0..25)
             .map(|i| Primitive {
-                shape: Shape::Sphere(Sphere::new(
+                surface: Surface::Shape(Shape::Sphere(Sphere::new(
                     Vec3::new(
                         (i % 5) as f32 * 2.0 - 4.0,
                         (i / 5) as f32 * 2.0 - 4.0,
                         -1000.0,
                     ),
                     0.5,
-                )),
+                ))),
                 object: i,
             })
             .collect();
@@ -560,7 +560,7 @@ mod tests {
         assert!(used > face / 4 && used <= face, "{census:?}");
         // Each bead's own direction finds it, alone or nearly so; between them, nothing.
         for (i, bead) in beads.iter().enumerate() {
-            let Shape::Sphere(sphere) = bead.shape else {
+            let Surface::Shape(Shape::Sphere(sphere)) = bead.surface else {
                 unreachable!()
             };
             let listed = buffer.at(sphere.center.into()).unwrap();
@@ -579,7 +579,10 @@ mod tests {
     fn a_box_around_the_light_is_listed_in_every_cell() {
         let light = Vec3::new(1.0, 2.0, 3.0);
         let around = Primitive {
-            shape: Shape::Sphere(Sphere::new(light + Vec3::new(0.5, 0.0, 0.0), 2.0)),
+            surface: Surface::Shape(Shape::Sphere(Sphere::new(
+                light + Vec3::new(0.5, 0.0, 0.0),
+                2.0,
+            ))),
             object: 0,
         };
         let buffer = LightBuffer::new(light, &[around]);
@@ -606,7 +609,7 @@ mod tests {
         let primitives: Vec<Primitive> = directions
             .iter()
             .map(|d| Primitive {
-                shape: Shape::Sphere(Sphere::new(*d * 10.0, 0.01)),
+                surface: Surface::Shape(Shape::Sphere(Sphere::new(*d * 10.0, 0.01))),
                 object: 0,
             })
             .collect();

@@ -18,14 +18,16 @@
 mod bvh;
 mod bvh_build;
 mod first_hit;
+mod instance;
 mod isolated;
 mod light_buffer;
 mod primitive;
 
 pub use bvh::Bvh;
 pub use first_hit::{Candidate, FirstHitTiles, TileCensus};
+pub use instance::{Instance, Model};
 pub use light_buffer::{LightBuffer, LightBufferCensus};
-pub use primitive::Primitive;
+pub use primitive::{Primitive, Surface};
 
 /// The most candidates a first-hit tile lists before it is left to the BVH.
 pub use first_hit::MAX_CANDIDATES;
@@ -133,9 +135,12 @@ impl Accelerator {
         lights: &[Option<Vec3>],
         options: AccelOptions,
     ) -> Self {
-        let bounds: Vec<Aabb> = primitives.iter().map(|p| p.shape.bounds()).collect();
+        let bounds: Vec<Aabb> = primitives.iter().map(|p| p.surface.bounds()).collect();
         let (mut bvh, order) = Bvh::build(&bounds);
-        let primitives: Vec<Primitive> = order.iter().map(|&i| primitives[i as usize]).collect();
+        let primitives: Vec<Primitive> = order
+            .iter()
+            .map(|&i| primitives[i as usize].clone())
+            .collect();
         let isolated = if options.isolated_solids {
             isolated::isolated_solids(&primitives, &bvh, object_count)
         } else {
@@ -178,16 +183,16 @@ impl Accelerator {
     #[inline]
     pub fn surface(&self, q: &RayQuery, hit: &Hit) -> SurfacePoint {
         self.primitives[hit.primitive as usize]
-            .shape
+            .surface
             .surface(q, &hit.shape)
     }
 
-    /// The texture coordinates of `surface`, the surface point of `hit`.
+    /// The texture coordinates of `surface`, the surface point of `hit` along `q`.
     #[inline]
-    pub fn uv(&self, surface: &SurfacePoint, hit: &Hit) -> (f32, f32) {
+    pub fn uv(&self, q: &RayQuery, surface: &SurfacePoint, hit: &Hit) -> (f32, f32) {
         self.primitives[hit.primitive as usize]
-            .shape
-            .uv(surface, &hit.shape)
+            .surface
+            .uv(q, surface, &hit.shape)
     }
 
     /// The object `hit` is on.
@@ -242,7 +247,7 @@ impl Accelerator {
             Reach::Inside { solid, t_min } => {
                 // Any other primitive's hit would lie on the segment from the origin to
                 // this exit, which is inside the solid's box, where no other box comes.
-                let shape = &self.primitives[solid as usize].shape;
+                let shape = &self.primitives[solid as usize].surface;
                 match shape.intersect_after(q, t_min, f32::INFINITY) {
                     Some(hit) => Some(Hit {
                         shape: hit,
@@ -261,7 +266,7 @@ impl Accelerator {
         let mut best: Option<Hit> = None;
         self.bvh.closest(q, f32::INFINITY, |i, t_max| {
             let hit = self.primitives[i as usize]
-                .shape
+                .surface
                 .intersect_after(q, t_min, t_max)?;
             best = Some(Hit {
                 shape: hit,
@@ -283,7 +288,7 @@ impl Accelerator {
             if c.min_t >= t_max {
                 break; // this box and every later one start beyond the nearest hit
             }
-            let shape = &self.primitives[c.primitive as usize].shape;
+            let shape = &self.primitives[c.primitive as usize].surface;
             if let Some(hit) = shape.intersect_after(q, 0.0, t_max) {
                 t_max = hit.t;
                 best = Some(Hit {
@@ -301,11 +306,11 @@ impl Accelerator {
     /// direction, else the BVH; both give the same answer. A point light's position must be
     /// where the layer was built to see it (a light that moves is a geometry change).
     ///
-    /// `leaving` names the object whose surface the ray starts on, when it leaves from the
-    /// outside towards a light on that side (or from either side of a flat object). Every
-    /// object is convex (a sphere, a closed cylinder, a tetrahedron, a convex polygon), so it
-    /// lies wholly behind the plane tangent at the origin and the ray cannot meet it again:
-    /// the buffer's lists skip it. The BVH path tests it regardless, as the reference.
+    /// `leaving` names the object whose surface the ray starts on, when that object is convex
+    /// (a sphere, a closed cylinder, a tetrahedron, a convex polygon; not a mesh) and the ray
+    /// leaves it from the outside towards a light on that side (or from either side of a
+    /// flat object): the object lies wholly behind the plane tangent at the origin and the
+    /// ray cannot meet it again, so the buffer's lists skip it. The BVH path tests it regardless, as the reference.
     #[inline]
     pub fn light_reaching(
         &self,
@@ -401,17 +406,16 @@ impl Accelerator {
     ) -> bool {
         let prim = &self.primitives[i as usize];
         if opaque {
-            if prim.shape.intersect(q, t_max).is_some() {
+            if prim.surface.occludes(q, t_max) {
                 *light = Vec3A::ZERO;
                 return false;
             }
             return true;
         }
-        let crossings = prim.shape.crossings(q, t_max);
+        let crossings = prim.surface.crossings(q, t_max);
         if crossings > 0 {
             let filter = filters.of(prim.object);
-            *light *= filter;
-            if crossings == 2 {
+            for _ in 0..crossings {
                 *light *= filter;
             }
             if *light == Vec3A::ZERO {

@@ -22,7 +22,7 @@ pub struct Config {
 }
 
 /// Median seconds of `runs` calls of `f`.
-fn median(runs: usize, mut f: impl FnMut()) -> f64 {
+pub(super) fn median(runs: usize, mut f: impl FnMut()) -> f64 {
     let mut times: Vec<f64> = (0..runs)
         .map(|_| {
             let start = Instant::now();

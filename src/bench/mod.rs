@@ -3,6 +3,7 @@
 mod convergence;
 mod edit;
 mod numerics;
+mod scale;
 mod scenes;
 
 use anyhow::Result;
@@ -55,6 +56,18 @@ pub enum BenchKind {
         #[arg(long, default_value_t = 9)]
         runs: usize,
     },
+    /// What a million-triangle mesh and 100 instances cost (docs/benchmarks/scale.md).
+    Scale {
+        /// A 59k-triangle mesh, a small image and 10 instances: proves the bench works.
+        #[arg(long)]
+        quick: bool,
+        /// Where scale.md goes (default: prism-bench/scale in the working directory).
+        #[arg(long)]
+        out: Option<std::path::PathBuf>,
+        /// Timed runs per figure (the median is reported).
+        #[arg(long, default_value_t = 5)]
+        runs: usize,
+    },
     /// Numerical accuracy tables (docs/numerics.md).
     Numerics {
         /// Timed runs per configuration (the median is reported).
@@ -71,6 +84,11 @@ pub fn run(args: BenchArgs) -> Result<()> {
 fn run_in_pool(args: BenchArgs) -> Result<()> {
     match args.what {
         BenchKind::Numerics { runs } => numerics::run(runs.max(1)),
+        BenchKind::Scale { quick, out, runs } => scale::run(scale::Config {
+            quick,
+            runs: runs.max(1),
+            out_dir: out.unwrap_or_else(|| std::path::Path::new("prism-bench").join("scale")),
+        }),
         BenchKind::Edit { quick, out, runs } => edit::run(edit::Config {
             quick,
             runs: runs.max(1),

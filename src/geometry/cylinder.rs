@@ -21,8 +21,11 @@ pub struct Cylinder {
 /// Which part of the cylinder a ray hit.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum CylinderPart {
+    /// The curved side.
     Side,
+    /// The cap at the base.
     Bottom,
+    /// The cap at the top.
     Top,
 }
 

@@ -3,14 +3,18 @@
 
 mod aabb;
 mod cylinder;
+mod mesh;
 mod ray;
 mod shape;
 mod sphere;
+mod transform;
 mod triangle;
 
 pub use aabb::Aabb;
-pub use cylinder::Cylinder;
+pub use cylinder::{Cylinder, CylinderPart};
+pub use mesh::{Mesh, MeshError};
 pub use ray::{Ray, RayQuery};
-pub use shape::{Shape, ShapeHit, SurfacePoint};
+pub use shape::{HitDetail, Shape, ShapeHit, SurfacePoint};
 pub use sphere::Sphere;
-pub use triangle::Triangle;
+pub use transform::Transform;
+pub use triangle::{Triangle, TriangleHit};

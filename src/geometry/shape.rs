@@ -28,11 +28,28 @@ pub struct ShapeHit {
     pub detail: HitDetail,
 }
 
+/// Which part of which shape a hit is on, as each kind of shape needs to know it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum HitDetail {
+    /// A sphere's surface.
     Sphere,
-    Triangle { b: [f32; 3] },
-    Cylinder { part: CylinderPart },
+    /// A triangle, at barycentric weights `b`.
+    Triangle {
+        /// The weights of its three corners.
+        b: [f32; 3],
+    },
+    /// A cylinder's side or cap.
+    Cylinder {
+        /// Which.
+        part: CylinderPart,
+    },
+    /// Triangle `triangle` of a mesh, at barycentric weights `b`.
+    Mesh {
+        /// The triangle's index in the mesh.
+        triangle: u32,
+        /// The weights of its three corners.
+        b: [f32; 3],
+    },
 }
 
 impl HitDetail {
@@ -53,8 +70,12 @@ pub struct SurfacePoint {
     pub point: Vec3A,
     /// Per-coordinate bound on the distance of `point` from the true surface.
     pub error: Vec3A,
-    /// Outward (for closed shapes) or winding-order (for triangles) unit normal.
+    /// Outward (for closed shapes) or winding-order (for triangles) unit normal: the true
+    /// surface's, which decides sides and where spawned rays start.
     pub normal: Vec3A,
+    /// The unit normal shading uses: `normal`, except on a smooth mesh, where it is the
+    /// corners' normals interpolated (on the same side as `normal`).
+    pub shading: Vec3A,
 }
 
 impl Shape {
@@ -106,6 +127,7 @@ impl Shape {
                     point,
                     error,
                     normal,
+                    shading: normal,
                 }
             }
             (Shape::Triangle(tri), HitDetail::Triangle { b }) => {
@@ -114,6 +136,7 @@ impl Shape {
                     point,
                     error,
                     normal: tri.normal,
+                    shading: tri.normal,
                 }
             }
             (Shape::Cylinder(c), HitDetail::Cylinder { part }) => {
@@ -122,6 +145,7 @@ impl Shape {
                     point,
                     error,
                     normal,
+                    shading: normal,
                 }
             }
             (shape, detail) => unreachable!("hit {detail:?} does not belong to {shape:?}"),

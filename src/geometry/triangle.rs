@@ -18,6 +18,7 @@ pub struct Triangle {
 /// Where on a triangle a ray hit it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TriangleHit {
+    /// The distance parameter along the ray.
     pub t: f32,
     /// Barycentric weights of p0, p1, p2.
     pub b: [f32; 3],
@@ -42,93 +43,106 @@ impl Triangle {
     /// The hit with t in (t_min, t_max), t_min ≥ 0.
     #[inline]
     pub fn intersect_after(&self, q: &RayQuery, t_min: f32, t_max: f32) -> Option<TriangleHit> {
-        let s = q.shear;
-        // Translate to the ray origin, permute so the ray's largest axis is z, then shear so
-        // the ray runs along +z.
-        let [ax, ay, a_z] = q.axes.permute(self.p[0] - q.ray.origin);
-        let [bx, by, b_z] = q.axes.permute(self.p[1] - q.ray.origin);
-        let [cx, cy, c_z] = q.axes.permute(self.p[2] - q.ray.origin);
-        let ax = ax - s.x * a_z;
-        let ay = ay - s.y * a_z;
-        let bx = bx - s.x * b_z;
-        let by = by - s.y * b_z;
-        let cx = cx - s.x * c_z;
-        let cy = cy - s.y * c_z;
-        let mut u = cx * by - cy * bx;
-        let mut v = ax * cy - ay * cx;
-        let mut w = bx * ay - by * ax;
-        // An edge function of exactly zero is ambiguous in f32: decide it in f64, where the
-        // products of f32 values are exact.
-        if u == 0.0 || v == 0.0 || w == 0.0 {
-            let (ax, ay, bx, by, cx, cy) = (
-                ax as f64, ay as f64, bx as f64, by as f64, cx as f64, cy as f64,
-            );
-            u = (cx * by - cy * bx) as f32;
-            v = (ax * cy - ay * cx) as f32;
-            w = (bx * ay - by * ax) as f32;
-        }
-        if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) {
-            return None;
-        }
-        let det = u + v + w;
-        if det == 0.0 {
-            return None;
-        }
-        let az = s.z * a_z;
-        let bz = s.z * b_z;
-        let cz = s.z * c_z;
-        let t_scaled = u * az + v * bz + w * cz;
-        // t = t_scaled / det must lie in (0, t_max); compare without dividing.
-        if det < 0.0 && (t_scaled >= 0.0 || t_scaled < t_max * det) {
-            return None;
-        }
-        if det > 0.0 && (t_scaled <= 0.0 || t_scaled > t_max * det) {
-            return None;
-        }
-        let inv_det = 1.0 / det;
-        let t = t_scaled * inv_det;
-        if t <= t_min || t >= t_max || t.is_nan() {
-            return None;
-        }
-        // A t this close to 0 may be rounding of a triangle the ray starts on or beside (a
-        // shadow ray leaving a floor, say): only a t beyond its error bound is a hit
-        // (pbrt-v4, section 6.5.3).
-        let max_x = largest_magnitude(ax, bx, cx);
-        let max_y = largest_magnitude(ay, by, cy);
-        let max_z = largest_magnitude(az, bz, cz);
-        let delta_x = gamma(5) * (max_x + max_z);
-        let delta_y = gamma(5) * (max_y + max_z);
-        let delta_z = gamma(3) * max_z;
-        let delta_e = 2.0 * (gamma(2) * max_x * max_y + delta_y * max_x + delta_x * max_y);
-        let max_e = largest_magnitude(u, v, w);
-        let delta_t =
-            3.0 * (gamma(3) * max_e * max_z + delta_e * max_z + delta_z * max_e) * inv_det.abs();
-        if t <= delta_t {
-            return None;
-        }
-        Some(TriangleHit {
-            t,
-            b: [u * inv_det, v * inv_det, w * inv_det],
-        })
+        watertight(&self.p, q, t_min, t_max)
     }
 
     /// The hit point from the barycentric weights (accurate regardless of the ray's length)
     /// and its error bound (pbrt-v4, section 6.8.4).
     #[inline]
     pub fn surface(&self, hit: &TriangleHit) -> (Vec3A, Vec3A) {
-        let [b0, b1, b2] = hit.b;
-        let t0 = self.p[0] * b0;
-        let t1 = self.p[1] * b1;
-        let t2 = self.p[2] * b2;
-        let point = t0 + t1 + t2;
-        let error = (t0.abs() + t1.abs() + t2.abs()) * gamma(7);
-        (point, error)
+        barycentric_point(&self.p, hit.b)
     }
 
     /// The box around the triangle.
     pub fn bounds(&self) -> Aabb {
         Aabb::from_points(&self.p.map(Vec3::from))
     }
+}
+
+/// The watertight test of the ray against the triangle with corners `p` (in winding
+/// order): the hit with t in (t_min, t_max), t_min ≥ 0. Shared by lone triangles and
+/// mesh triangles, which store their corners differently.
+#[inline(always)]
+pub fn watertight(p: &[Vec3A; 3], q: &RayQuery, t_min: f32, t_max: f32) -> Option<TriangleHit> {
+    let s = q.shear;
+    // Translate to the ray origin, permute so the ray's largest axis is z, then shear so
+    // the ray runs along +z.
+    let [ax, ay, a_z] = q.axes.permute(p[0] - q.ray.origin);
+    let [bx, by, b_z] = q.axes.permute(p[1] - q.ray.origin);
+    let [cx, cy, c_z] = q.axes.permute(p[2] - q.ray.origin);
+    let ax = ax - s.x * a_z;
+    let ay = ay - s.y * a_z;
+    let bx = bx - s.x * b_z;
+    let by = by - s.y * b_z;
+    let cx = cx - s.x * c_z;
+    let cy = cy - s.y * c_z;
+    let mut u = cx * by - cy * bx;
+    let mut v = ax * cy - ay * cx;
+    let mut w = bx * ay - by * ax;
+    // An edge function of exactly zero is ambiguous in f32: decide it in f64, where the
+    // products of f32 values are exact.
+    if u == 0.0 || v == 0.0 || w == 0.0 {
+        let (ax, ay, bx, by, cx, cy) = (
+            ax as f64, ay as f64, bx as f64, by as f64, cx as f64, cy as f64,
+        );
+        u = (cx * by - cy * bx) as f32;
+        v = (ax * cy - ay * cx) as f32;
+        w = (bx * ay - by * ax) as f32;
+    }
+    if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) {
+        return None;
+    }
+    let det = u + v + w;
+    if det == 0.0 {
+        return None;
+    }
+    let az = s.z * a_z;
+    let bz = s.z * b_z;
+    let cz = s.z * c_z;
+    let t_scaled = u * az + v * bz + w * cz;
+    // t = t_scaled / det must lie in (0, t_max); compare without dividing.
+    if det < 0.0 && (t_scaled >= 0.0 || t_scaled < t_max * det) {
+        return None;
+    }
+    if det > 0.0 && (t_scaled <= 0.0 || t_scaled > t_max * det) {
+        return None;
+    }
+    let inv_det = 1.0 / det;
+    let t = t_scaled * inv_det;
+    if t <= t_min || t >= t_max || t.is_nan() {
+        return None;
+    }
+    // A t this close to 0 may be rounding of a triangle the ray starts on or beside (a
+    // shadow ray leaving a floor, say): only a t beyond its error bound is a hit
+    // (pbrt-v4, section 6.5.3).
+    let max_x = largest_magnitude(ax, bx, cx);
+    let max_y = largest_magnitude(ay, by, cy);
+    let max_z = largest_magnitude(az, bz, cz);
+    let delta_x = gamma(5) * (max_x + max_z);
+    let delta_y = gamma(5) * (max_y + max_z);
+    let delta_z = gamma(3) * max_z;
+    let delta_e = 2.0 * (gamma(2) * max_x * max_y + delta_y * max_x + delta_x * max_y);
+    let max_e = largest_magnitude(u, v, w);
+    let delta_t =
+        3.0 * (gamma(3) * max_e * max_z + delta_e * max_z + delta_z * max_e) * inv_det.abs();
+    if t <= delta_t {
+        return None;
+    }
+    Some(TriangleHit {
+        t,
+        b: [u * inv_det, v * inv_det, w * inv_det],
+    })
+}
+
+/// The point with barycentric weights `b` over corners `p`, and its error bound.
+#[inline(always)]
+pub fn barycentric_point(p: &[Vec3A; 3], b: [f32; 3]) -> (Vec3A, Vec3A) {
+    let t0 = p[0] * b[0];
+    let t1 = p[1] * b[1];
+    let t2 = p[2] * b[2];
+    let point = t0 + t1 + t2;
+    let error = (t0.abs() + t1.abs() + t2.abs()) * gamma(7);
+    (point, error)
 }
 
 /// max(|a|, |b|, |c|) for finite values, in plain comparisons (`f32::max` also orders NaN,

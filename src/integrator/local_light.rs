@@ -24,7 +24,7 @@ impl Integrator<'_> {
         } else if let Some(planar) = object.planar_uv {
             planar.uv(p)
         } else {
-            self.accel().uv(&at.surface, at.hit)
+            self.accel().uv(at.q, &at.surface, at.hit)
         };
         let base = material.texture.eval(uv, p - object.origin);
         if !material.texture.needs_uv() {
@@ -45,15 +45,17 @@ impl Integrator<'_> {
                     (-Vec3A::from(direction), None, Falloff::None)
                 }
             };
-            let n_dot = n.dot(to_light);
-            if n_dot <= 0.0 {
-                continue; // the light is behind this side: no shadow ray needed
+            // A light behind this side of the true surface, or of the shading normal,
+            // sends it nothing: no shadow ray needed.
+            let n_dot = at.ns.dot(to_light);
+            if n_dot <= 0.0 || (at.ns != n && n.dot(to_light) <= 0.0) {
+                continue;
             }
             let distance = to_light.length();
             let l = to_light / distance;
             let origin = self.leave(&at.surface, n, l);
             self.counts.shadow += 1;
-            let leaving = (at.entering || object.flat).then_some(at.object);
+            let leaving = ((at.entering && object.convex) || object.flat).then_some(at.object);
             let toward = match point {
                 Some(position) => Toward::Point(position),
                 None => Toward::Direction(l),
@@ -70,7 +72,7 @@ impl Integrator<'_> {
             }
             diffuse += lit * base * (material.diffuse * n_dot / distance);
             if material.specular > 0.0 {
-                let r = reflect(-l, n);
+                let r = reflect(-l, at.ns);
                 let r_dot_v = r.dot(-at.q.ray.dir).max(0.0);
                 // Outside the highlight the power is 0 (unless the exponent is 0 too).
                 if r_dot_v > 0.0 || material.shininess == 0.0 {

@@ -103,8 +103,12 @@ struct Shading<'s> {
     surface: SurfacePoint,
     /// Whether the ray arrives from the side the surface normal faces.
     entering: bool,
-    /// The normal of the side the ray arrives on.
+    /// The true surface's normal on the side the ray arrives on: it decides sides and
+    /// where spawned rays start.
     n: Vec3A,
+    /// The shading normal on that side (`n` but on a smooth mesh): it lights and turns
+    /// rays, never so far that one starts on the wrong side of the true surface.
+    ns: Vec3A,
 }
 
 impl<'a> Integrator<'a> {
@@ -202,17 +206,19 @@ impl<'a> Integrator<'a> {
         let material = self.appearance.material(object);
         let surface = self.accel().surface(q, hit);
         let entering = q.ray.dir.dot(surface.normal) < 0.0;
+        // Shade the side the ray arrives on.
+        let (n, ns) = if entering {
+            (surface.normal, surface.shading)
+        } else {
+            (-surface.normal, -surface.shading)
+        };
         let at = Shading {
             q,
             hit,
             object,
             material,
-            // Shade the side the ray arrives on.
-            n: if entering {
-                surface.normal
-            } else {
-                -surface.normal
-            },
+            n,
+            ns,
             surface,
             entering,
         };
@@ -238,6 +244,19 @@ impl<'a> Integrator<'a> {
             color += self.transmission(&at, path, share) * material.transparency;
         }
         color
+    }
+
+    /// The direction `turn(ns)` when it leaves on the side of the true surface it should
+    /// (`outward`: the side the ray arrived on), else `turn(n)`: a shading normal never sends a
+    /// reflected ray into the surface or a refracted one back out.
+    #[inline]
+    fn turned(&self, at: &Shading, outward: bool, turn: impl Fn(Vec3A) -> Vec3A) -> Vec3A {
+        let dir = turn(at.ns);
+        if at.ns == at.n || (dir.dot(at.n) > 0.0) == outward {
+            dir
+        } else {
+            turn(at.n)
+        }
     }
 
     /// The isolated solid a ray leaving the surface at `at` in direction `dir` starts in:

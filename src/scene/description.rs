@@ -4,8 +4,9 @@
 use crate::appearance::Material;
 use crate::appearance::{Background, Falloff, Light, LightKind};
 use crate::camera::Camera;
-use crate::geometry::Aabb;
-use glam::{DVec3, Vec3};
+use crate::geometry::{Aabb, Mesh, Transform};
+use glam::{Affine3A, DVec3, Quat, Vec3};
+use std::sync::Arc;
 
 /// Every position in a `Scene` (camera, lights, shapes) is relative to `origin`, which is
 /// kept in f64: world position = origin + position. The loader puts the origin at the
@@ -101,6 +102,22 @@ pub enum ShapeDesc {
         /// Its corners.
         vertices: [Vec3; 4],
     },
+    /// A triangle mesh in its own space, placed by `transform`. Objects that share one
+    /// `Arc` (one file's mesh, placed many times) share its hierarchy too.
+    Mesh {
+        /// The mesh (smooth or faceted as the file asked).
+        mesh: Arc<Mesh>,
+        /// From the mesh's space to the scene's.
+        transform: Transform,
+    },
+    /// A shape in its own space under a transform its own parameters cannot express (a
+    /// sphere scaled unevenly into an ellipsoid, a tilted cylinder).
+    Transformed {
+        /// The shape, in its own space: a sphere or a cylinder.
+        shape: Box<ShapeDesc>,
+        /// From the shape's space to the scene's.
+        transform: Transform,
+    },
 }
 
 impl ShapeDesc {
@@ -112,6 +129,9 @@ impl ShapeDesc {
             ShapeDesc::Polygon { vertices } => vertices[0],
             ShapeDesc::Triangle { vertices } => vertices[0],
             ShapeDesc::Tetrahedron { vertices } => vertices.iter().sum::<Vec3>() / 4.0,
+            ShapeDesc::Mesh { transform, .. } | ShapeDesc::Transformed { transform, .. } => {
+                transform.to_scene().translation.into()
+            }
         }
     }
 
@@ -137,6 +157,10 @@ impl ShapeDesc {
             ShapeDesc::Polygon { vertices } => around(vertices),
             ShapeDesc::Triangle { vertices } => around(vertices),
             ShapeDesc::Tetrahedron { vertices } => around(vertices),
+            ShapeDesc::Mesh { mesh, transform } => transform.bounds_to_scene(&mesh.bounds()),
+            ShapeDesc::Transformed { shape, transform } => {
+                transform.bounds_to_scene(&shape.bounds())
+            }
         }
     }
 
@@ -166,8 +190,25 @@ impl ShapeDesc {
             ShapeDesc::Tetrahedron { vertices } => ShapeDesc::Tetrahedron {
                 vertices: vertices.map(p),
             },
+            ShapeDesc::Mesh { mesh, transform } => ShapeDesc::Mesh {
+                mesh: mesh.clone(),
+                transform: moved(transform, scale, offset),
+            },
+            ShapeDesc::Transformed { shape, transform } => ShapeDesc::Transformed {
+                shape: shape.clone(),
+                transform: moved(transform, scale, offset),
+            },
         }
     }
+}
+
+/// `transform` followed by a scale about the origin and a move.
+fn moved(transform: &Transform, scale: f32, offset: Vec3) -> Transform {
+    let outer =
+        Affine3A::from_scale_rotation_translation(Vec3::splat(scale), Quat::IDENTITY, offset);
+    // Scaling by a positive finite factor keeps a valid transform valid, unless the scale is
+    // so extreme that it overflows; then the shape is left where it was.
+    transform.then(outer).unwrap_or(*transform)
 }
 
 impl Scene {

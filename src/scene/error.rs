@@ -38,6 +38,16 @@ pub enum SceneError {
         /// What is wrong.
         message: String,
     },
+    /// A problem at a line of a file the scene reads: a mesh or its material library.
+    #[error("{}:{line}: {message}", path.display())]
+    Asset {
+        /// The mesh or material file.
+        path: PathBuf,
+        /// The line, counted from 1.
+        line: usize,
+        /// What is wrong, and which of the scene's tables reads the file.
+        message: String,
+    },
 }
 
 impl SceneError {
@@ -45,7 +55,9 @@ impl SceneError {
     pub fn line(&self) -> Option<usize> {
         match self {
             SceneError::Read { .. } => None,
-            SceneError::Syntax { line, .. } | SceneError::Invalid { line, .. } => Some(*line),
+            SceneError::Syntax { line, .. }
+            | SceneError::Invalid { line, .. }
+            | SceneError::Asset { line, .. } => Some(*line),
         }
     }
 }

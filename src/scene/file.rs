@@ -1,6 +1,9 @@
 //! The TOML scene format (documented in docs/scene-format.md): parsing, and validation that
 //! names the file, the line and the field of every problem.
 
+mod meshes;
+mod placement;
+
 use super::description::{RenderDefaults, Scene, SceneObject, ShapeDesc};
 use super::error::{SceneError, line_column};
 use super::spans::FieldSpans;
@@ -11,6 +14,7 @@ use crate::camera::Camera;
 use crate::limits;
 use crate::messages::{number, quoted};
 use glam::Vec3;
+use placement::Placement;
 use serde::Deserialize;
 use std::collections::{BTreeMap, HashMap};
 use std::ops::Range;
@@ -43,6 +47,8 @@ struct SceneFile {
     triangles: Vec<Spanned<TriangleDef>>,
     #[serde(default)]
     tetrahedra: Vec<Spanned<TetrahedronDef>>,
+    #[serde(default)]
+    meshes: Vec<Spanned<MeshDef>>,
 }
 
 #[derive(Deserialize)]
@@ -129,6 +135,10 @@ struct SphereDef {
     radius: f32,
     material: Option<String>,
     shadow: Option<bool>,
+    translate: Option<P3>,
+    rotate: Option<V3>,
+    /// A number or [sx, sy, sz].
+    scale: Option<toml::Value>,
 }
 
 #[derive(Deserialize)]
@@ -140,6 +150,10 @@ struct CylinderDef {
     height: f32,
     material: Option<String>,
     shadow: Option<bool>,
+    translate: Option<P3>,
+    rotate: Option<V3>,
+    /// A number or [sx, sy, sz].
+    scale: Option<toml::Value>,
 }
 
 #[derive(Deserialize)]
@@ -149,6 +163,10 @@ struct PolygonDef {
     vertices: Vec<P3>,
     material: Option<String>,
     shadow: Option<bool>,
+    translate: Option<P3>,
+    rotate: Option<V3>,
+    /// A number or [sx, sy, sz].
+    scale: Option<toml::Value>,
 }
 
 #[derive(Deserialize)]
@@ -158,6 +176,10 @@ struct TriangleDef {
     vertices: [P3; 3],
     material: Option<String>,
     shadow: Option<bool>,
+    translate: Option<P3>,
+    rotate: Option<V3>,
+    /// A number or [sx, sy, sz].
+    scale: Option<toml::Value>,
 }
 
 #[derive(Deserialize)]
@@ -167,6 +189,24 @@ struct TetrahedronDef {
     vertices: [P3; 4],
     material: Option<String>,
     shadow: Option<bool>,
+    translate: Option<P3>,
+    rotate: Option<V3>,
+    /// A number or [sx, sy, sz].
+    scale: Option<toml::Value>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct MeshDef {
+    name: Option<String>,
+    path: String,
+    material: Option<String>,
+    smooth: Option<bool>,
+    shadow: Option<bool>,
+    translate: Option<P3>,
+    rotate: Option<V3>,
+    /// A number or [sx, sy, sz].
+    scale: Option<toml::Value>,
 }
 
 /// Reads and validates the scene file at `path`; image textures are found relative to it.
@@ -178,7 +218,12 @@ pub fn load_scene(path: &Path) -> Result<Scene, SceneError> {
 
 /// The text of a scene file: a regular file of at most `MAX_SCENE_FILE_BYTES`, in UTF-8.
 fn read_scene_text(path: &Path) -> Result<String, SceneError> {
-    use crate::limits::MAX_SCENE_FILE_BYTES;
+    read_text_file(path, limits::MAX_SCENE_FILE_BYTES, "scene file")
+}
+
+/// The text of the file at `path`, `what` (a scene file, a mesh file): a regular file of at
+/// most `max` bytes, in UTF-8.
+fn read_text_file(path: &Path, max: u64, what: &str) -> Result<String, SceneError> {
     use crate::messages::io_message;
     use std::io::Read;
     let fail = |reason: String| SceneError::Read {
@@ -195,20 +240,20 @@ fn read_scene_text(path: &Path) -> Result<String, SceneError> {
     }
     let too_large = || {
         fail(format!(
-            "it is larger than the {} MiB a scene file may be",
-            MAX_SCENE_FILE_BYTES >> 20
+            "it is larger than the {} MiB a {what} may be",
+            max >> 20
         ))
     };
-    if meta.len() > MAX_SCENE_FILE_BYTES {
+    if meta.len() > max {
         return Err(too_large());
     }
     let file = std::fs::File::open(path).map_err(|e| fail(io_message(&e)))?;
     // The file may grow between the check and the read: read no more than the limit.
     let mut bytes = Vec::new();
-    file.take(MAX_SCENE_FILE_BYTES + 1)
+    file.take(max + 1)
         .read_to_end(&mut bytes)
         .map_err(|e| fail(io_message(&e)))?;
-    if bytes.len() as u64 > MAX_SCENE_FILE_BYTES {
+    if bytes.len() as u64 > max {
         return Err(too_large());
     }
     String::from_utf8(bytes).map_err(|e| {
@@ -644,10 +689,20 @@ impl Validator<'_> {
                 &d.material,
                 d.shadow,
                 &|at| {
-                    Ok(ShapeDesc::Sphere {
-                        center: self.position(at, "center", d.center)?,
-                        radius: self.length(at, "radius", d.radius)?,
-                    })
+                    let placement = self.placement(at, d.translate, d.rotate, d.scale.as_ref())?;
+                    match placement.uniform_scale() {
+                        Some(s) => Ok(ShapeDesc::Sphere {
+                            center: self.position(at, "center", placement.point(d.center))?,
+                            radius: self.length(at, "radius", (d.radius as f64 * s) as f32)?,
+                        }),
+                        None => {
+                            let sphere = ShapeDesc::Sphere {
+                                center: self.position(at, "center", d.center)?,
+                                radius: self.length(at, "radius", d.radius)?,
+                            };
+                            self.transformed(at, sphere, &placement)
+                        }
+                    }
                 },
             )?;
         }
@@ -661,17 +716,29 @@ impl Validator<'_> {
                 &d.material,
                 d.shadow,
                 &|at| {
-                    let base = self.position(at, "base", d.base)?;
-                    let height = self.length(at, "height", d.height)?;
+                    let placement = self.placement(at, d.translate, d.rotate, d.scale.as_ref())?;
+                    let upright = placement.upright_scale();
+                    let (a, b) = upright.unwrap_or((1.0, 1.0));
+                    let base = if upright.is_some() {
+                        placement.point(d.base)
+                    } else {
+                        d.base
+                    };
+                    let relative_base = self.position(at, "base", base)?;
+                    let height = self.length(at, "height", (d.height as f64 * b) as f32)?;
                     // The top cap is a position too.
-                    let mut top = d.base;
+                    let mut top = base;
                     top[1] += height as f64;
                     self.position(at, "height", top)?;
-                    Ok(ShapeDesc::Cylinder {
-                        base,
-                        radius: self.length(at, "radius", d.radius)?,
+                    let cylinder = ShapeDesc::Cylinder {
+                        base: relative_base,
+                        radius: self.length(at, "radius", (d.radius as f64 * a) as f32)?,
                         height,
-                    })
+                    };
+                    match upright {
+                        Some(_) => Ok(cylinder),
+                        None => self.transformed(at, cylinder, &placement),
+                    }
                 },
             )?;
         }
@@ -685,7 +752,9 @@ impl Validator<'_> {
                 &d.material,
                 d.shadow,
                 &|at| {
-                    let vertices = self.polygon(at, &d.vertices)?;
+                    let placement = self.placement(at, d.translate, d.rotate, d.scale.as_ref())?;
+                    let placed: Vec<P3> = d.vertices.iter().map(|&v| placement.point(v)).collect();
+                    let vertices = self.polygon(at, &placed)?;
                     Ok(ShapeDesc::Polygon { vertices })
                 },
             )?;
@@ -700,7 +769,8 @@ impl Validator<'_> {
                 &d.material,
                 d.shadow,
                 &|at| {
-                    let v = self.polygon(at, &d.vertices)?;
+                    let placement = self.placement(at, d.translate, d.rotate, d.scale.as_ref())?;
+                    let v = self.polygon(at, &d.vertices.map(|v| placement.point(v)))?;
                     Ok(ShapeDesc::Triangle {
                         vertices: [v[0], v[1], v[2]],
                     })
@@ -717,7 +787,8 @@ impl Validator<'_> {
                 &d.material,
                 d.shadow,
                 &|at| {
-                    let v = self.vertices(at, &d.vertices)?;
+                    let placement = self.placement(at, d.translate, d.rotate, d.scale.as_ref())?;
+                    let v = self.vertices(at, &d.vertices.map(|v| placement.point(v)))?;
                     if !has_volume(&v) {
                         return Err(self.field_error(
                             at,
@@ -738,6 +809,49 @@ impl Validator<'_> {
                 },
             )?;
         }
+        let mut mesh_files = meshes::MeshFiles::default();
+        for (i, m) in file.meshes.iter().enumerate() {
+            let d = m.get_ref();
+            let label = match &d.name {
+                Some(n) => format!("meshes[{i}] {}", quoted(n)),
+                None => format!("meshes[{i}]"),
+            };
+            let at = Item {
+                span: m.span(),
+                name: &label,
+            };
+            let material = match &d.material {
+                None => None,
+                Some(name) => Some(materials.get(name).ok_or_else(|| {
+                    self.field_error(
+                        &at,
+                        "material",
+                        format!("no material named {} (see [materials])", quoted(name)),
+                    )
+                })?),
+            };
+            let placement = self.placement(&at, d.translate, d.rotate, d.scale.as_ref())?;
+            let transform = placement.model(self.origin).ok_or_else(|| {
+                self.field_error(&at, "scale", "the placement cannot be inverted")
+            })?;
+            let name = d.name.clone().unwrap_or_else(|| format!("meshes {i}"));
+            for part in
+                self.mesh_objects(&at, d, material, &placement, &mut mesh_files, &mut images)?
+            {
+                objects.push(SceneObject {
+                    name: match &part.part {
+                        Some(p) => format!("{name}/{p}"),
+                        None => name.clone(),
+                    },
+                    shape: ShapeDesc::Mesh {
+                        mesh: part.mesh,
+                        transform,
+                    },
+                    material: part.material,
+                    casts_shadow: d.shadow.unwrap_or(true),
+                });
+            }
+        }
         Ok(Scene {
             origin: self.origin,
             camera,
@@ -746,6 +860,35 @@ impl Validator<'_> {
             ambient,
             lights,
             objects,
+        })
+    }
+
+    /// `shape` (relative to the scene's origin) under `placement`, when its own parameters
+    /// cannot express it; it must stay within `MAX_COORDINATE` of the camera.
+    fn transformed(
+        &self,
+        at: &Item,
+        shape: ShapeDesc,
+        placement: &Placement,
+    ) -> Result<ShapeDesc, SceneError> {
+        let Some(transform) = placement.relative(self.origin) else {
+            return Err(self.field_error(at, "scale", "the placement cannot be inverted"));
+        };
+        let b = transform.bounds_to_scene(&shape.bounds());
+        let reach = b.min.abs().max(b.max.abs()).max_element() as f64;
+        if reach.is_nan() || reach > limits::MAX_COORDINATE {
+            return Err(self.field_error(
+                at,
+                "scale",
+                format!(
+                    "the shape, placed, reaches {reach:e} from the camera, more than {:e}",
+                    limits::MAX_COORDINATE
+                ),
+            ));
+        }
+        Ok(ShapeDesc::Transformed {
+            shape: Box::new(shape),
+            transform,
         })
     }
 

@@ -3,9 +3,11 @@
 //! geometry changes, and never for an appearance edit.
 
 use super::description::{Scene, ShapeDesc};
-use crate::accel::{AccelOptions, Accelerator, Primitive};
-use crate::geometry::{Cylinder, Shape, Sphere, Triangle};
+use crate::accel::{AccelOptions, Accelerator, Instance, Model, Primitive, Surface};
+use crate::geometry::{Cylinder, Mesh, Shape, Sphere, Triangle};
 use glam::{Vec3, Vec3A};
+use std::collections::HashMap;
+use std::sync::Arc;
 
 /// What shading needs to know about the shape of the object a primitive belongs to.
 #[derive(Clone, Debug)]
@@ -20,6 +22,9 @@ pub struct ObjectGeometry {
     /// planar within 10⁻⁴ of its extent, file.rs; a fold that small shadowing itself would be
     /// acne, not something to draw.)
     pub flat: bool,
+    /// A convex solid or a flat convex polygon: a ray leaving its outside cannot meet it
+    /// again (not a mesh, whose bumps may shadow each other).
+    pub convex: bool,
 }
 
 /// Texture coordinates over a polygon's extent in its own plane.
@@ -71,10 +76,18 @@ impl Geometry {
     pub fn new(scene: &Scene, options: AccelOptions) -> Self {
         let mut primitives = Vec::new();
         let mut objects = Vec::with_capacity(scene.objects.len());
+        // One model per mesh, however many objects place it.
+        let mut models: HashMap<*const Mesh, Arc<Model>> = HashMap::new();
         for (index, object) in scene.objects.iter().enumerate() {
             let id = index as u32;
             let mut planar_uv = None;
-            let mut push = |shape| primitives.push(Primitive { shape, object: id });
+            let mut push_surface = |surface| {
+                primitives.push(Primitive {
+                    surface,
+                    object: id,
+                })
+            };
+            let mut push = |shape| push_surface(Surface::Shape(shape));
             match &object.shape {
                 ShapeDesc::Sphere { center, radius } => {
                     push(Shape::Sphere(Sphere::new(*center, *radius)))
@@ -119,6 +132,34 @@ impl Geometry {
                         push(Shape::Triangle(tri));
                     }
                 }
+                ShapeDesc::Mesh { mesh, transform } => {
+                    let model = models
+                        .entry(Arc::as_ptr(mesh))
+                        .or_insert_with(|| Arc::new(Model::mesh(Mesh::clone(mesh))));
+                    push_surface(Surface::Instance(Arc::new(Instance::new(
+                        model.clone(),
+                        *transform,
+                    ))));
+                }
+                ShapeDesc::Transformed { shape, transform } => {
+                    let model = match **shape {
+                        ShapeDesc::Sphere { center, radius } => {
+                            Shape::Sphere(Sphere::new(center, radius))
+                        }
+                        ShapeDesc::Cylinder {
+                            base,
+                            radius,
+                            height,
+                        } => Shape::Cylinder(Cylinder::new(base, radius, height)),
+                        ref other => {
+                            unreachable!("only spheres and cylinders are transformed: {other:?}")
+                        }
+                    };
+                    push_surface(Surface::Instance(Arc::new(Instance::new(
+                        Arc::new(Model::Shape(model)),
+                        *transform,
+                    ))));
+                }
             }
             objects.push(ObjectGeometry {
                 name: object.name.clone(),
@@ -128,6 +169,7 @@ impl Geometry {
                     object.shape,
                     ShapeDesc::Polygon { .. } | ShapeDesc::Triangle { .. }
                 ),
+                convex: !matches!(object.shape, ShapeDesc::Mesh { .. }),
             });
         }
         let lights: Vec<Option<Vec3>> = scene.lights.iter().map(|l| l.position()).collect();

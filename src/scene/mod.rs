@@ -10,6 +10,7 @@ mod edit;
 mod error;
 mod file;
 mod geometry;
+mod obj;
 mod prepared;
 mod spans;
 
@@ -18,4 +19,5 @@ pub use edit::{EditError, check_camera};
 pub use error::SceneError;
 pub use file::{Assets, load_scene, parse_scene, parse_scene_with};
 pub use geometry::{Geometry, ObjectGeometry, PlanarUv};
+pub use obj::{LineError, ObjFile, ObjPart, parse_obj};
 pub use prepared::PreparedScene;

@@ -1,0 +1,294 @@
+//! The second level of the hierarchy: a model in its own space (a mesh under its own BVH,
+//! or one shape) and instances of it placed in the scene by transforms. A ray meets an
+//! instance by being taken into the model's space, without renormalising its direction, so
+//! distances along it mean the same in both spaces.
+
+use super::bvh::Bvh;
+use crate::geometry::{
+    Aabb, HitDetail, Mesh, Ray, RayQuery, Shape, ShapeHit, SurfacePoint, Transform,
+};
+use std::sync::Arc;
+
+/// What an instance places: built once, shared by every instance of it.
+#[derive(Clone, Debug)]
+pub enum Model {
+    /// A triangle mesh, its triangles stored in the order of its hierarchy's leaves.
+    Mesh {
+        /// The mesh.
+        mesh: Mesh,
+        /// The hierarchy over its triangles.
+        bvh: Bvh,
+    },
+    /// One shape, for a shape under a transform that its own parameters cannot express
+    /// (an ellipsoid, a tilted cylinder).
+    Shape(Shape),
+}
+
+impl Model {
+    /// The model of `mesh`, with the hierarchy over its triangles built.
+    pub fn mesh(mut mesh: Mesh) -> Self {
+        let bounds: Vec<Aabb> = (0..mesh.triangle_count() as u32)
+            .map(|i| mesh.triangle_bounds(i))
+            .collect();
+        let (bvh, order) = Bvh::build(&bounds);
+        mesh.reorder(&order);
+        Model::Mesh { mesh, bvh }
+    }
+
+    /// The box around it in its own space.
+    pub fn bounds(&self) -> Aabb {
+        match self {
+            Model::Mesh { bvh, .. } => bvh.bounds.unwrap_or(Aabb::EMPTY),
+            Model::Shape(shape) => shape.bounds(),
+        }
+    }
+
+    /// The bytes its acceleration data takes beyond the mesh's vertices: the triangles'
+    /// corner lists and the hierarchy's nodes (0 for a shape).
+    pub fn index_bytes(&self) -> usize {
+        match self {
+            Model::Mesh { mesh, bvh } => {
+                mesh.triangle_bytes() + bvh.nodes.len() * size_of_val(&bvh.nodes[0])
+            }
+            Model::Shape(_) => 0,
+        }
+    }
+
+    #[inline]
+    fn intersect_after(&self, q: &RayQuery, t_min: f32, t_max: f32) -> Option<ShapeHit> {
+        match self {
+            Model::Mesh { mesh, bvh } => {
+                let mut best = None;
+                bvh.closest(q, t_max, |i, t_max| {
+                    let hit = mesh.intersect(i, q, t_min, t_max)?;
+                    best = Some(ShapeHit {
+                        t: hit.t,
+                        detail: HitDetail::Mesh {
+                            triangle: i,
+                            b: hit.b,
+                        },
+                    });
+                    Some(hit.t)
+                });
+                best
+            }
+            Model::Shape(shape) => shape.intersect_after(q, t_min, t_max),
+        }
+    }
+
+    #[inline]
+    fn occludes(&self, q: &RayQuery, t_max: f32) -> bool {
+        match self {
+            Model::Mesh { mesh, bvh } => {
+                let mut hit = false;
+                bvh.visit(q, t_max, |i| {
+                    hit = mesh.intersect(i, q, 0.0, t_max).is_some();
+                    !hit
+                });
+                hit
+            }
+            Model::Shape(shape) => shape.intersect(q, t_max).is_some(),
+        }
+    }
+
+    #[inline]
+    fn crossings(&self, q: &RayQuery, t_max: f32) -> u32 {
+        match self {
+            Model::Mesh { mesh, bvh } => {
+                let mut crossings = 0;
+                bvh.visit(q, t_max, |i| {
+                    crossings += mesh.intersect(i, q, 0.0, t_max).is_some() as u32;
+                    true
+                });
+                crossings
+            }
+            Model::Shape(shape) => shape.crossings(q, t_max),
+        }
+    }
+
+    /// The surface point of `hit` in the model's space.
+    #[inline]
+    fn surface(&self, q: &RayQuery, hit: &ShapeHit) -> SurfacePoint {
+        match (self, hit.detail) {
+            (Model::Mesh { mesh, .. }, HitDetail::Mesh { triangle, b }) => {
+                mesh.surface(triangle, b)
+            }
+            (Model::Shape(shape), _) => shape.surface(q, hit),
+            (_, detail) => unreachable!("hit {detail:?} does not belong to a mesh"),
+        }
+    }
+
+    #[inline]
+    fn uv(&self, q: &RayQuery, hit: &ShapeHit) -> (f32, f32) {
+        match (self, hit.detail) {
+            (Model::Mesh { mesh, .. }, HitDetail::Mesh { triangle, b }) => mesh.uv(triangle, b),
+            (Model::Shape(shape), _) => shape.uv(&shape.surface(q, hit), hit),
+            (_, detail) => unreachable!("hit {detail:?} does not belong to a mesh"),
+        }
+    }
+}
+
+/// A model placed in the scene by a transform.
+#[derive(Clone, Debug)]
+pub struct Instance {
+    model: Arc<Model>,
+    transform: Transform,
+    /// The box around it in the scene's space.
+    bounds: Aabb,
+}
+
+impl Instance {
+    /// `model` placed by `transform` (from the model's space to the scene's).
+    pub fn new(model: Arc<Model>, transform: Transform) -> Self {
+        let bounds = transform.bounds_to_scene(&model.bounds());
+        Self {
+            model,
+            transform,
+            bounds,
+        }
+    }
+
+    /// What it places.
+    pub fn model(&self) -> &Arc<Model> {
+        &self.model
+    }
+
+    /// The box around it in the scene's space.
+    pub fn bounds(&self) -> Aabb {
+        self.bounds
+    }
+
+    /// The query along `q`'s ray in the model's space.
+    #[inline(always)]
+    fn local(&self, q: &RayQuery) -> RayQuery {
+        let ray: Ray = self.transform.ray_to_object(&q.ray);
+        RayQuery::new(ray)
+    }
+
+    /// The nearest hit with t in (t_min, t_max).
+    #[inline]
+    pub fn intersect_after(&self, q: &RayQuery, t_min: f32, t_max: f32) -> Option<ShapeHit> {
+        self.model.intersect_after(&self.local(q), t_min, t_max)
+    }
+
+    /// Whether anything of it lies on the segment (0, t_max).
+    #[inline]
+    pub fn occludes(&self, q: &RayQuery, t_max: f32) -> bool {
+        self.model.occludes(&self.local(q), t_max)
+    }
+
+    /// How many times the segment (0, t_max) crosses its surface.
+    #[inline]
+    pub fn crossings(&self, q: &RayQuery, t_max: f32) -> u32 {
+        self.model.crossings(&self.local(q), t_max)
+    }
+
+    /// The surface point of `hit` in the scene's space, its error bound carried across.
+    #[inline]
+    pub fn surface(&self, q: &RayQuery, hit: &ShapeHit) -> SurfacePoint {
+        let local = self.model.surface(&self.local(q), hit);
+        let (point, error) = self.transform.point_to_scene(local.point, local.error);
+        let normal = self.transform.normal_to_scene(local.normal);
+        let shading = if local.shading == local.normal {
+            normal
+        } else {
+            self.transform.normal_to_scene(local.shading)
+        };
+        SurfacePoint {
+            point,
+            error,
+            normal,
+            shading,
+        }
+    }
+
+    /// The texture coordinates of `hit`, from the model's own surface (a turned sphere's
+    /// map turns with it).
+    #[inline]
+    pub fn uv(&self, q: &RayQuery, hit: &ShapeHit) -> (f32, f32) {
+        self.model.uv(&self.local(q), hit)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::Sphere;
+    use glam::{Vec2, Vec3, Vec3A};
+
+    fn unit_cube_mesh() -> Mesh {
+        let p: Vec<Vec3> = (0..8)
+            .map(|i| Vec3::new((i & 1) as f32, ((i >> 1) & 1) as f32, ((i >> 2) & 1) as f32))
+            .collect();
+        // Outward-wound faces.
+        let quads = [
+            [0, 2, 3, 1], // z = 0
+            [4, 5, 7, 6], // z = 1
+            [0, 1, 5, 4], // y = 0
+            [2, 6, 7, 3], // y = 1
+            [0, 4, 6, 2], // x = 0
+            [1, 3, 7, 5], // x = 1
+        ];
+        let tris = quads
+            .iter()
+            .flat_map(|&[a, b, c, d]| [[a, b, c], [a, c, d]])
+            .collect();
+        Mesh::new(p, Vec::new(), Vec::<Vec2>::new(), tris).unwrap()
+    }
+
+    /// A mesh's hierarchy finds what a loop over every triangle finds.
+    #[test]
+    fn mesh_hits_match_brute_force() {
+        let mesh = unit_cube_mesh().subdivided().subdivided();
+        let model = Model::mesh(mesh.clone());
+        let Model::Mesh { mesh: stored, .. } = &model else {
+            unreachable!()
+        };
+        let mut seed = 7u32;
+        let mut next = || {
+            seed = seed.wrapping_mul(1664525).wrapping_add(1013904223);
+            (seed >> 8) as f32 / (1 << 24) as f32
+        };
+        for _ in 0..500 {
+            let origin = Vec3::new(next() * 3.0 - 1.0, next() * 3.0 - 1.0, 3.0);
+            let target = Vec3::new(next(), next(), next());
+            let q = RayQuery::new(Ray::new(origin, target - origin));
+            let brute = (0..stored.triangle_count() as u32)
+                .filter_map(|i| stored.intersect(i, &q, 0.0, f32::INFINITY))
+                .map(|h| h.t)
+                .fold(f32::INFINITY, f32::min);
+            let fast = model.intersect_after(&q, 0.0, f32::INFINITY).map(|h| h.t);
+            assert_eq!(fast, Some(brute));
+            // A closed mesh is crossed twice by a ray through it, and occludes it.
+            assert_eq!(model.crossings(&q, f32::INFINITY), 2);
+            assert!(model.occludes(&q, f32::INFINITY));
+        }
+    }
+
+    /// A sphere scaled by (2, 1, 1) is an ellipsoid: hit where x²/4 + y² + z² = 1, with
+    /// the normal of that surface.
+    #[test]
+    fn scaled_sphere_is_an_ellipsoid() {
+        let model = Arc::new(Model::Shape(Shape::Sphere(Sphere::new(Vec3::ZERO, 1.0))));
+        let t = Transform::from_scale_rotation_translation(
+            Vec3::new(2.0, 1.0, 1.0),
+            Vec3::ZERO,
+            Vec3::new(0.0, 0.0, -10.0),
+        )
+        .unwrap();
+        let instance = Instance::new(model, t);
+        // Along x at height y = 0.6: x = ±2·0.8.
+        let q = RayQuery::new(Ray::new(Vec3::new(-5.0, 0.6, -10.0), Vec3::X));
+        let hit = instance.intersect_after(&q, 0.0, f32::INFINITY).unwrap();
+        assert!((hit.t - (5.0 - 1.6)).abs() < 1e-5, "{}", hit.t);
+        let s = instance.surface(&q, &hit);
+        assert!((s.point - Vec3A::new(-1.6, 0.6, -10.0)).length() < 1e-5);
+        // The gradient of x²/4 + y² + z² is (x/2, 2y, 2z).
+        let expected = Vec3A::new(-0.8, 1.2, 0.0).normalize();
+        assert!((s.normal - expected).length() < 1e-5, "{}", s.normal);
+        assert!(s.error.cmpge(Vec3A::ZERO).all() && s.error.max_element() < 1e-4);
+        assert_eq!(instance.crossings(&q, f32::INFINITY), 2);
+        let b = instance.bounds();
+        assert!(b.min.x <= -2.0 && b.max.x >= 2.0 && b.max.y < 1.01);
+    }
+}

@@ -1,0 +1,354 @@
+//! `[[meshes]]`: triangle meshes read from OBJ files, with their MTL materials mapped onto
+//! prism's. A file placed by many entries is read and built once (instancing).
+
+use super::placement::Placement;
+use super::{Images, Item, MeshDef, Validator};
+use crate::appearance::{Material, Texture, UvTransform};
+use crate::geometry::Mesh;
+use crate::limits;
+use crate::messages::quoted;
+use crate::scene::error::SceneError;
+use crate::scene::obj::{LineError, MtlMaterial, parse_mtl, parse_obj};
+use glam::{DVec3, Vec3};
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+/// The mesh files one scene reads, each once.
+#[derive(Default)]
+pub(super) struct MeshFiles {
+    /// By the file's path and whether it was asked for smooth.
+    loaded: HashMap<(PathBuf, bool), LoadedFile>,
+    /// Triangles in all the files read so far.
+    triangles: usize,
+}
+
+/// A mesh file, read.
+struct LoadedFile {
+    /// One per material it uses.
+    parts: Vec<LoadedPart>,
+    /// Its `mtllib` names and their lines.
+    libraries: Vec<(String, usize)>,
+    /// Each part's material from the libraries, once an entry without a material of its
+    /// own has asked for them.
+    materials: Option<Vec<Material>>,
+}
+
+/// One material's part of a mesh file.
+struct LoadedPart {
+    /// The material name the file uses for it.
+    name: Option<String>,
+    /// The line that starts the part.
+    line: usize,
+    mesh: Arc<Mesh>,
+}
+
+/// One object a mesh entry makes.
+pub(super) struct MeshObject {
+    /// The material name of its part, when the file has more than one.
+    pub(super) part: Option<String>,
+    pub(super) mesh: Arc<Mesh>,
+    pub(super) material: Material,
+}
+
+/// A problem at a line of mesh or material file `path`, read for table `at`.
+fn asset_error(path: &Path, at: &Item, e: LineError) -> SceneError {
+    SceneError::Asset {
+        path: path.to_path_buf(),
+        line: e.line,
+        message: format!("{} (read by {})", e.message, at.name),
+    }
+}
+
+/// `rel`'s folder joined to `name`: how an OBJ names its MTL, and an MTL its images.
+fn beside(rel: &str, name: &str) -> String {
+    match Path::new(rel).parent() {
+        Some(dir) if !dir.as_os_str().is_empty() => dir.join(name).to_string_lossy().into_owned(),
+        _ => name.to_string(),
+    }
+}
+
+impl Validator<'_> {
+    /// The objects mesh entry `d` makes: one per material its file uses. `material` is the
+    /// entry's own, when it gives one (the file's libraries are then not read).
+    pub(super) fn mesh_objects(
+        &self,
+        at: &Item,
+        d: &MeshDef,
+        material: Option<&Material>,
+        placement: &Placement,
+        files: &mut MeshFiles,
+        images: &mut Images,
+    ) -> Result<Vec<MeshObject>, SceneError> {
+        let smooth = d.smooth.unwrap_or(true);
+        let key = (self.assets.locate(&d.path), smooth);
+        if !files.loaded.contains_key(&key) {
+            let file = self.read_mesh(at, &d.path, smooth, files.triangles)?;
+            files.triangles += file
+                .parts
+                .iter()
+                .map(|p| p.mesh.triangle_count())
+                .sum::<usize>();
+            files.loaded.insert(key.clone(), file);
+        }
+        let file = files.loaded.get_mut(&key).expect("just loaded");
+        if material.is_none() && file.materials.is_none() {
+            file.materials = Some(self.file_materials(at, &d.path, file, images)?);
+        }
+        self.check_placed_bounds(at, &file.parts, placement)?;
+        let several = file.parts.len() > 1;
+        Ok(file
+            .parts
+            .iter()
+            .enumerate()
+            .map(|(i, p)| MeshObject {
+                part: several.then(|| p.name.clone().unwrap_or_else(|| "default".into())),
+                mesh: p.mesh.clone(),
+                material: match (material, &file.materials) {
+                    (Some(m), _) => m.clone(),
+                    (None, Some(materials)) => materials[i].clone(),
+                    (None, None) => unreachable!("materials read above"),
+                },
+            })
+            .collect())
+    }
+
+    /// The placed mesh must lie within `MAX_COORDINATE` of the camera, like every shape.
+    fn check_placed_bounds(
+        &self,
+        at: &Item,
+        parts: &[LoadedPart],
+        placement: &Placement,
+    ) -> Result<(), SceneError> {
+        for part in parts {
+            let b = part.mesh.bounds();
+            for corner in 0..8 {
+                let p = DVec3::new(
+                    if corner & 1 == 0 { b.min.x } else { b.max.x } as f64,
+                    if corner & 2 == 0 { b.min.y } else { b.max.y } as f64,
+                    if corner & 4 == 0 { b.min.z } else { b.max.z } as f64,
+                );
+                let placed = DVec3::from(placement.point(p.to_array())) - self.origin;
+                if !(placed.is_finite() && placed.abs().max_element() <= limits::MAX_COORDINATE) {
+                    return Err(self.field_error(
+                        at,
+                        "path",
+                        format!(
+                            "the mesh, placed, reaches {:?}, more than {:e} from the camera",
+                            placed.to_array(),
+                            limits::MAX_COORDINATE
+                        ),
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Reads and parses mesh file `rel`; the scene's meshes hold `triangles` already.
+    fn read_mesh(
+        &self,
+        at: &Item,
+        rel: &str,
+        smooth: bool,
+        triangles: usize,
+    ) -> Result<LoadedFile, SceneError> {
+        let path = self.assets.locate(rel);
+        let text = self.read_asset_text(rel).map_err(|e| {
+            self.field_error(
+                at,
+                "path",
+                format!(
+                    "cannot read mesh {}: {e}",
+                    quoted(&path.display().to_string())
+                ),
+            )
+        })?;
+        let budget = limits::MAX_SCENE_TRIANGLES.saturating_sub(triangles);
+        let obj = parse_obj(&text, budget, smooth).map_err(|e| asset_error(&path, at, e))?;
+        Ok(LoadedFile {
+            parts: obj
+                .parts
+                .into_iter()
+                .map(|p| LoadedPart {
+                    name: p.material,
+                    line: p.line,
+                    mesh: Arc::new(p.mesh),
+                })
+                .collect(),
+            libraries: obj.libraries,
+            materials: None,
+        })
+    }
+
+    /// Each part's material, from the libraries of `file` (read from `rel`); a part with no
+    /// `usemtl` gets the default.
+    fn file_materials(
+        &self,
+        at: &Item,
+        rel: &str,
+        file: &LoadedFile,
+        images: &mut Images,
+    ) -> Result<Vec<Material>, SceneError> {
+        let path = self.assets.locate(rel);
+        let mut library: HashMap<String, Material> = HashMap::new();
+        if file.parts.iter().any(|p| p.name.is_some()) {
+            for (name, line) in &file.libraries {
+                let mtl_rel = beside(rel, name);
+                let mtl_path = self.assets.locate(&mtl_rel);
+                let mtl_text = self
+                    .read_asset_text(&mtl_rel)
+                    .map_err(|e| SceneError::Asset {
+                        path: path.clone(),
+                        line: *line,
+                        message: format!(
+                            "cannot read material library {}: {e} (read by {}; give the entry a \
+                         `material` to do without it)",
+                            quoted(&mtl_path.display().to_string()),
+                            at.name
+                        ),
+                    })?;
+                let materials = parse_mtl(&mtl_text).map_err(|e| asset_error(&mtl_path, at, e))?;
+                for m in materials {
+                    let material = self
+                        .mtl_material(&m, &mtl_rel, images)
+                        .map_err(|e| asset_error(&mtl_path, at, e))?;
+                    // The first library to define a name wins, as in other readers.
+                    library.entry(m.name.clone()).or_insert(material);
+                }
+            }
+        }
+        file.parts
+            .iter()
+            .map(|part| match &part.name {
+                None => Ok(Material::default()),
+                Some(name) => library.get(name).cloned().ok_or_else(|| SceneError::Asset {
+                    path: path.clone(),
+                    line: part.line,
+                    message: format!(
+                        "no material library of the file defines {} (read by {}; give the \
+                         entry a `material` to do without it)",
+                        quoted(name),
+                        at.name
+                    ),
+                }),
+            })
+            .collect()
+    }
+
+    /// The text of asset `rel`: at most `MAX_MESH_FILE_BYTES`, UTF-8.
+    fn read_asset_text(&self, rel: &str) -> Result<String, String> {
+        match self.assets.embedded(rel) {
+            Some(bytes) => {
+                let bytes = bytes.map_err(|e| e.to_string())?;
+                String::from_utf8(bytes.to_vec()).map_err(|_| "it is not UTF-8 text".into())
+            }
+            None => super::read_text_file(
+                &self.assets.locate(rel),
+                limits::MAX_MESH_FILE_BYTES,
+                "mesh file",
+            )
+            .map_err(|e| match e {
+                SceneError::Read { reason, .. } => reason,
+                other => other.to_string(),
+            }),
+        }
+    }
+
+    /// Prism's material for an MTL one, each value held to the scene file's limits.
+    fn mtl_material(
+        &self,
+        m: &MtlMaterial,
+        mtl_rel: &str,
+        images: &mut Images,
+    ) -> Result<Material, LineError> {
+        let at = |key: &'static str| m.lines.get(key).copied().unwrap_or(m.line);
+        let fail = |key: &'static str, message: String| LineError {
+            line: at(key),
+            message: format!("material {}: {message}", quoted(&m.name)),
+        };
+        let color =
+            |key: &'static str, v: Option<[f32; 3]>, hi: f32| -> Result<Option<Vec3>, LineError> {
+                match v {
+                    None => Ok(None),
+                    Some(c) if c.iter().all(|x| (0.0..=hi).contains(x)) => Ok(Some(Vec3::from(c))),
+                    Some(c) => Err(fail(
+                        key,
+                        format!("`{key}` must lie in [0, {hi}] on every channel, got {c:?}"),
+                    )),
+                }
+            };
+        let mean = |c: Vec3| (c.x + c.y + c.z) / 3.0;
+        let d = Material::default();
+        let kd = color("Kd", m.kd, *limits::REFLECTANCE.end())?;
+        let ka = color("Ka", m.ka, *limits::REFLECTANCE.end())?;
+        let ks = color("Ks", m.ks, *limits::REFLECTANCE.end())?;
+        let ke = color("Ke", m.ke, limits::MAX_RADIANCE)?;
+        let texture = match &m.map_kd {
+            Some(name) => {
+                let rel = beside(mtl_rel, name);
+                let image = images
+                    .load(&self.assets, &rel)
+                    .map_err(|e| fail("map_Kd", e))?;
+                Texture::Image {
+                    image,
+                    uv: UvTransform::IDENTITY,
+                }
+            }
+            None => Texture::Solid(kd.unwrap_or(Vec3::splat(0.8))),
+        };
+        let in_range = |key: &'static str, v: f32, lo: f32, hi: f32| {
+            if (lo..=hi).contains(&v) {
+                Ok(v)
+            } else {
+                Err(fail(
+                    key,
+                    format!("`{key}` must lie in [{lo}, {hi}], got {v}"),
+                ))
+            }
+        };
+        let transparency = match m.transparency {
+            Some(t) => in_range(
+                if m.lines.contains_key("Tr") {
+                    "Tr"
+                } else {
+                    "d"
+                },
+                t,
+                0.0,
+                1.0,
+            )?,
+            None => 0.0,
+        };
+        // illum 3 to 7 ask for ray-traced reflection; 4, 6, 7 and 9 for refraction.
+        let illum = m.illum.unwrap_or(2);
+        let reflects = (3..=7).contains(&illum);
+        let refracts = matches!(illum, 4 | 6 | 7 | 9);
+        let eta = match m.ni {
+            Some(ni) if refracts => Some(in_range(
+                "Ni",
+                ni,
+                *limits::ETA.start(),
+                *limits::ETA.end(),
+            )?),
+            _ => None,
+        };
+        let specular = ks
+            .map(mean)
+            .unwrap_or(if illum >= 2 { d.specular } else { 0.0 });
+        Ok(Material {
+            texture,
+            ambient: ka.map(mean).unwrap_or(d.ambient),
+            diffuse: d.diffuse,
+            specular: if illum >= 2 { specular } else { 0.0 },
+            shininess: match m.ns {
+                Some(ns) => in_range("Ns", ns, 0.0, limits::MAX_SHININESS)?,
+                None => d.shininess,
+            },
+            reflectivity: if reflects { specular.min(1.0) } else { 0.0 },
+            transparency,
+            eta,
+            emission: ke.unwrap_or(Vec3::ZERO),
+        })
+    }
+}

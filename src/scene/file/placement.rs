@@ -1,0 +1,153 @@
+//! Where an object is put: `scale`, then `rotate` (degrees about x, then y, then z,
+//! right-handed, as POV-Ray's `rotate`), then `translate`, in the scene file's own (world)
+//! coordinates and in f64, so that a transform of a far-off scene keeps its precision.
+
+use super::{Item, P3, V3, Validator};
+use crate::geometry::Transform;
+use crate::limits;
+use crate::messages::number;
+use crate::scene::error::SceneError;
+use glam::{Affine3A, DMat3, DVec3, Mat3A, Vec3A};
+
+/// An object's placement in world coordinates.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct Placement {
+    scale: DVec3,
+    rotation: DMat3,
+    /// Whether the rotation keeps the y axis where it is (a turn about y only).
+    keeps_y: bool,
+    translate: DVec3,
+}
+
+impl Placement {
+    pub(super) const IDENTITY: Placement = Placement {
+        scale: DVec3::ONE,
+        rotation: DMat3::IDENTITY,
+        keeps_y: true,
+        translate: DVec3::ZERO,
+    };
+
+    fn linear(&self) -> DMat3 {
+        self.rotation * DMat3::from_diagonal(self.scale)
+    }
+
+    /// A world point, placed (exactly itself, signs of zero included, without a placement).
+    pub(super) fn point(&self, p: P3) -> P3 {
+        if *self == Self::IDENTITY {
+            return p;
+        }
+        (self.linear() * DVec3::from(p) + self.translate).to_array()
+    }
+
+    /// The factor of a scale that is the same on every axis.
+    pub(super) fn uniform_scale(&self) -> Option<f64> {
+        (self.scale.x == self.scale.y && self.scale.y == self.scale.z).then_some(self.scale.x)
+    }
+
+    /// For an upright cylinder that stays upright (a turn about y at most, the same scale
+    /// across it): the factors of its radius and its height.
+    pub(super) fn upright_scale(&self) -> Option<(f64, f64)> {
+        (self.keeps_y && self.scale.x == self.scale.z).then_some((self.scale.x, self.scale.y))
+    }
+
+    /// The transform of a shape given relative to the scene's origin `origin` (as every
+    /// `Scene` position is) to where the placement puts it, also relative to `origin`:
+    /// r ↦ L·r + (L·origin + t − origin).
+    pub(super) fn relative(&self, origin: DVec3) -> Option<Transform> {
+        let l = self.linear();
+        self.affine(l * origin + self.translate - origin)
+    }
+
+    /// The transform of a model in its own coordinates (a mesh file's) to the scene's,
+    /// relative to `origin`: m ↦ L·m + t − origin.
+    pub(super) fn model(&self, origin: DVec3) -> Option<Transform> {
+        self.affine(self.translate - origin)
+    }
+
+    fn affine(&self, translation: DVec3) -> Option<Transform> {
+        let l = self.linear().as_mat3();
+        let affine = Affine3A {
+            matrix3: Mat3A::from(l),
+            translation: Vec3A::from(translation.as_vec3()),
+        };
+        Transform::new(affine)
+    }
+}
+
+impl Validator<'_> {
+    /// The placement that an object's `translate`, `rotate` and `scale` give.
+    pub(super) fn placement(
+        &self,
+        at: &Item,
+        translate: Option<P3>,
+        rotate: Option<V3>,
+        scale: Option<&toml::Value>,
+    ) -> Result<Placement, SceneError> {
+        let mut out = Placement::IDENTITY;
+        if let Some(t) = translate {
+            let t = DVec3::from(t);
+            if !(t.is_finite() && t.abs().max_element() <= limits::MAX_COORDINATE) {
+                return Err(self.field_error(
+                    at,
+                    "translate",
+                    format!(
+                        "`translate` must hold finite numbers of at most {:e}, got {:?}",
+                        limits::MAX_COORDINATE,
+                        t.to_array()
+                    ),
+                ));
+            }
+            out.translate = t;
+        }
+        if let Some(r) = rotate {
+            let degrees = self.point(at, "rotate", r)?.as_dvec3();
+            // Whole turns are exact; the rest is taken in [0, 360) for precision.
+            let turned = degrees.to_array().map(|d| d.rem_euclid(360.0));
+            let [x, y, z] = turned.map(f64::to_radians);
+            out.rotation =
+                DMat3::from_rotation_z(z) * DMat3::from_rotation_y(y) * DMat3::from_rotation_x(x);
+            out.keeps_y = turned[0] == 0.0 && turned[2] == 0.0;
+        }
+        if let Some(value) = scale {
+            let factors: Option<[f64; 3]> = match value {
+                toml::Value::Float(f) => Some([*f; 3]),
+                toml::Value::Integer(i) => Some([*i as f64; 3]),
+                toml::Value::Array(a) if a.len() == 3 => {
+                    let v: Vec<Option<f64>> = a
+                        .iter()
+                        .map(|x| match x {
+                            toml::Value::Float(f) => Some(*f),
+                            toml::Value::Integer(i) => Some(*i as f64),
+                            _ => None,
+                        })
+                        .collect();
+                    v.iter()
+                        .all(Option::is_some)
+                        .then(|| [v[0].unwrap(), v[1].unwrap(), v[2].unwrap()])
+                }
+                _ => None,
+            };
+            let Some(factors) = factors else {
+                return Err(self.field_error(
+                    at,
+                    "scale",
+                    "`scale` must be a number (the same on every axis) or [sx, sy, sz]",
+                ));
+            };
+            let (lo, hi) = (*limits::SCALE.start(), *limits::SCALE.end());
+            if let Some(bad) = factors.iter().find(|f| !(lo..=hi).contains(*f)) {
+                return Err(self.field_error(
+                    at,
+                    "scale",
+                    format!(
+                        "`scale` must be greater than zero, from {lo:e} to {hi:e} on every axis, \
+                         got {}",
+                        number(*bad as f32)
+                    ),
+                ));
+            }
+            out.scale = DVec3::from(factors);
+        }
+        Ok(out)
+    }
+}

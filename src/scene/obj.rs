@@ -1,0 +1,553 @@
+//! Wavefront OBJ meshes and their MTL material libraries: the statements a renderer needs
+//! (`v`, `vt`, `vn`, `f`, `usemtl`, `mtllib`; `newmtl` and the colour, highlight,
+//! transparency, index and `illum` statements), each problem named by its line. Statements
+//! for other programs (`o`, `g`, `s`, lines, curves) are passed over, as other readers do.
+//! Written here rather than taken from a crate so that a malformed line is reported by its
+//! number.
+
+use crate::geometry::{Mesh, MeshError};
+use glam::{Vec2, Vec3};
+use std::collections::HashMap;
+
+/// A problem at a line of an OBJ or MTL file.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct LineError {
+    /// The line, counted from 1.
+    pub line: usize,
+    /// What is wrong.
+    pub message: String,
+}
+
+/// The triangles of an OBJ file that use one material, as a mesh.
+#[derive(Clone, Debug)]
+pub struct ObjPart {
+    /// The `usemtl` name in force, if any.
+    pub material: Option<String>,
+    /// The line of that `usemtl` (or of the part's first face), for messages.
+    pub line: usize,
+    /// The part's triangles (polygons split into fans), with their corners' normals and
+    /// texture coordinates where every corner has them.
+    pub mesh: Mesh,
+}
+
+/// What an OBJ file holds.
+#[derive(Clone, Debug)]
+pub struct ObjFile {
+    /// One part per material, in the order the file first uses each.
+    pub parts: Vec<ObjPart>,
+    /// The material libraries it names (`mtllib`), with the line of each.
+    pub libraries: Vec<(String, usize)>,
+}
+
+/// One corner of a face: indices into the file's positions, texture coordinates, normals.
+type Corner = (u32, Option<u32>, Option<u32>);
+
+/// The faces that use one material, as they are read.
+struct PartBuilder {
+    material: Option<String>,
+    line: usize,
+    /// Triangles by corners.
+    triangles: Vec<[Corner; 3]>,
+}
+
+/// Reads OBJ text. At most `max_triangles` triangles are accepted (a polygon of n corners
+/// makes n − 2); `smooth` asks for vertex normals where the file has none.
+pub fn parse_obj(text: &str, max_triangles: usize, smooth: bool) -> Result<ObjFile, LineError> {
+    let mut positions: Vec<Vec3> = Vec::new();
+    let mut uvs: Vec<Vec2> = Vec::new();
+    let mut normals: Vec<Vec3> = Vec::new();
+    let mut parts: Vec<PartBuilder> = Vec::new();
+    let mut current: Option<usize> = None;
+    let mut libraries = Vec::new();
+    let mut triangle_count = 0usize;
+    let mut corners: Vec<Corner> = Vec::new();
+    for (index, raw) in text.lines().enumerate() {
+        let line = index + 1;
+        let fail = |message: String| LineError { line, message };
+        let content = raw.split('#').next().unwrap_or("").trim();
+        let mut words = content.split_ascii_whitespace();
+        let Some(keyword) = words.next() else {
+            continue;
+        };
+        match keyword {
+            "v" => {
+                // x y z, an optional w, or (a common extension) a colour r g b.
+                let n = numbers::<6>(words, "v", line)?;
+                match n.len {
+                    3 | 6 => {}
+                    4 => {
+                        if n.values[3] == 0.0 {
+                            return Err(fail("`v` has a weight w of 0".into()));
+                        }
+                    }
+                    k => {
+                        return Err(fail(format!(
+                            "`v` needs x y z (and an optional w), got {k} number{}",
+                            if k == 1 { "" } else { "s" }
+                        )));
+                    }
+                }
+                let w = if n.len == 4 { n.values[3] } else { 1.0 };
+                positions.push(Vec3::new(n.values[0], n.values[1], n.values[2]) / w);
+            }
+            "vt" => {
+                let n = numbers::<3>(words, "vt", line)?;
+                if n.len == 0 {
+                    return Err(fail("`vt` needs u (and optional v, w)".into()));
+                }
+                // OBJ's v runs up the picture, prism's down it (as image rows do).
+                let v = if n.len > 1 { n.values[1] } else { 0.0 };
+                uvs.push(Vec2::new(n.values[0], 1.0 - v));
+            }
+            "vn" => {
+                let n = numbers::<3>(words, "vn", line)?;
+                if n.len != 3 {
+                    return Err(fail(format!("`vn` needs x y z, got {} numbers", n.len)));
+                }
+                normals.push(Vec3::from_slice(&n.values));
+            }
+            "f" => {
+                corners.clear();
+                for word in words {
+                    corners.push(corner(
+                        word,
+                        (positions.len(), uvs.len(), normals.len()),
+                        line,
+                    )?);
+                }
+                if corners.len() < 3 {
+                    return Err(fail(format!(
+                        "a face needs at least three corners, got {}",
+                        corners.len()
+                    )));
+                }
+                triangle_count += corners.len() - 2;
+                if triangle_count > max_triangles {
+                    return Err(fail(format!(
+                        "the mesh has more than the {max_triangles} triangles a scene may hold"
+                    )));
+                }
+                let part = *current.get_or_insert_with(|| {
+                    parts.push(PartBuilder {
+                        material: None,
+                        line,
+                        triangles: Vec::new(),
+                    });
+                    parts.len() - 1
+                });
+                for i in 1..corners.len() - 1 {
+                    parts[part]
+                        .triangles
+                        .push([corners[0], corners[i], corners[i + 1]]);
+                }
+            }
+            "usemtl" => {
+                let name = rest_of(content, keyword);
+                if name.is_empty() {
+                    return Err(fail("`usemtl` needs a material name".into()));
+                }
+                current = Some(
+                    match parts
+                        .iter()
+                        .position(|p| p.material.as_deref() == Some(name))
+                    {
+                        Some(i) => i,
+                        None => {
+                            parts.push(PartBuilder {
+                                material: Some(name.to_string()),
+                                line,
+                                triangles: Vec::new(),
+                            });
+                            parts.len() - 1
+                        }
+                    },
+                );
+            }
+            "mtllib" => {
+                let name = rest_of(content, keyword);
+                if name.is_empty() {
+                    return Err(fail("`mtllib` needs a file name".into()));
+                }
+                libraries.push((name.to_string(), line));
+            }
+            _ => {} // o, g, s, l, p, curves and surfaces: not for a ray tracer of meshes
+        }
+    }
+    let parts: Vec<ObjPart> = parts
+        .into_iter()
+        .filter(|p| !p.triangles.is_empty())
+        .map(|p| build_part(p, &positions, &uvs, &normals, smooth))
+        .collect::<Result<_, _>>()?;
+    if parts.is_empty() {
+        return Err(LineError {
+            line: text.lines().count().max(1),
+            message: "the file has no faces (`f` lines): there is nothing to draw".into(),
+        });
+    }
+    Ok(ObjFile { parts, libraries })
+}
+
+/// Up to N numbers from `words`, all finite; more than N is an error.
+struct Numbers<const N: usize> {
+    values: [f32; N],
+    len: usize,
+}
+
+fn numbers<'a, const N: usize>(
+    words: impl Iterator<Item = &'a str>,
+    keyword: &str,
+    line: usize,
+) -> Result<Numbers<N>, LineError> {
+    let mut out = Numbers {
+        values: [0.0; N],
+        len: 0,
+    };
+    for word in words {
+        if out.len == N {
+            return Err(LineError {
+                line,
+                message: format!("`{keyword}` takes at most {N} numbers"),
+            });
+        }
+        let v: f32 = word.parse().map_err(|_| LineError {
+            line,
+            message: format!(
+                "`{keyword}`: {} is not a number",
+                crate::messages::quoted(word)
+            ),
+        })?;
+        if !v.is_finite() {
+            return Err(LineError {
+                line,
+                message: format!("`{keyword}`: {word} is not a finite number"),
+            });
+        }
+        out.values[out.len] = v;
+        out.len += 1;
+    }
+    Ok(out)
+}
+
+/// What follows the keyword on a line (a name may hold spaces).
+fn rest_of<'a>(content: &'a str, keyword: &str) -> &'a str {
+    content[keyword.len()..].trim()
+}
+
+/// One face corner, `v`, `v/vt`, `v//vn` or `v/vt/vn`, 1-based or negative (counted back
+/// from the last element defined so far), checked against the counts so far.
+fn corner(word: &str, counts: (usize, usize, usize), line: usize) -> Result<Corner, LineError> {
+    let fail = |message: String| LineError { line, message };
+    let mut fields = word.split('/');
+    let mut index = |what: &str, count: usize, required: bool| -> Result<Option<u32>, LineError> {
+        let Some(text) = fields.next().filter(|t| !t.is_empty() || required) else {
+            return Ok(None);
+        };
+        let i: i64 = text.parse().map_err(|_| {
+            fail(format!(
+                "face corner {}: {} is not a {what} index",
+                crate::messages::quoted(word),
+                crate::messages::quoted(text)
+            ))
+        })?;
+        let resolved = if i > 0 { i - 1 } else { count as i64 + i };
+        if i == 0 || resolved < 0 || resolved >= count as i64 {
+            return Err(fail(format!(
+                "face corner {}: {what} index {i} is out of range ({count} defined so far)",
+                crate::messages::quoted(word)
+            )));
+        }
+        Ok(Some(resolved as u32))
+    };
+    let v = index("vertex", counts.0, true)?.expect("required");
+    let vt = index("texture coordinate", counts.1, false)?;
+    let vn = index("normal", counts.2, false)?;
+    if fields.next().is_some() {
+        return Err(fail(format!(
+            "face corner {} has more than three indices",
+            crate::messages::quoted(word)
+        )));
+    }
+    Ok((v, vt, vn))
+}
+
+/// The mesh of one part: each distinct corner (position, texture coordinate, normal)
+/// becomes one vertex, so shared corners stay shared.
+fn build_part(
+    part: PartBuilder,
+    positions: &[Vec3],
+    uvs: &[Vec2],
+    normals: &[Vec3],
+    smooth: bool,
+) -> Result<ObjPart, LineError> {
+    let all_uv = part.triangles.iter().flatten().all(|c| c.1.is_some());
+    let all_normals = part.triangles.iter().flatten().all(|c| c.2.is_some());
+    let key = |c: &Corner| {
+        (
+            c.0,
+            if all_uv { c.1 } else { None },
+            if all_normals { c.2 } else { None },
+        )
+    };
+    let mut vertex_of: HashMap<Corner, u32> = HashMap::new();
+    let (mut p_out, mut uv_out, mut n_out) = (Vec::new(), Vec::new(), Vec::new());
+    let mut triangles = Vec::with_capacity(part.triangles.len());
+    for tri in &part.triangles {
+        triangles.push(tri.map(|c| {
+            let k = key(&c);
+            *vertex_of.entry(k).or_insert_with(|| {
+                p_out.push(positions[k.0 as usize]);
+                if let Some(t) = k.1 {
+                    uv_out.push(uvs[t as usize]);
+                }
+                if let Some(n) = k.2 {
+                    n_out.push(normals[n as usize]);
+                }
+                (p_out.len() - 1) as u32
+            })
+        }));
+    }
+    let mesh = Mesh::new(p_out, n_out, uv_out, triangles).map_err(|e| LineError {
+        line: part.line,
+        message: match e {
+            MeshError::NoTriangles => format!(
+                "every face {} has no area",
+                match &part.material {
+                    Some(m) => format!("with material {}", crate::messages::quoted(m)),
+                    None => "here".into(),
+                }
+            ),
+            other => other.to_string(),
+        },
+    })?;
+    let mesh = if smooth {
+        mesh.smooth()
+    } else {
+        mesh.faceted()
+    };
+    Ok(ObjPart {
+        material: part.material,
+        line: part.line,
+        mesh,
+    })
+}
+
+/// A material as an MTL file gives it: the statements prism maps, as written.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct MtlMaterial {
+    /// Its `newmtl` name.
+    pub name: String,
+    /// The line of its `newmtl`.
+    pub line: usize,
+    /// `Kd`, `Ka`, `Ks`, `Ke`: diffuse, ambient, specular and emitted colours.
+    pub kd: Option<[f32; 3]>,
+    /// See `kd`.
+    pub ka: Option<[f32; 3]>,
+    /// See `kd`.
+    pub ks: Option<[f32; 3]>,
+    /// See `kd`.
+    pub ke: Option<[f32; 3]>,
+    /// `Ns`: the highlight's exponent.
+    pub ns: Option<f32>,
+    /// `d` (opacity) or `Tr` (transparency, its complement), as transparency.
+    pub transparency: Option<f32>,
+    /// `Ni`: the index of refraction.
+    pub ni: Option<f32>,
+    /// `illum`: the illumination model (3–7 ask for ray-traced reflection; 4, 6, 7 and 9
+    /// for refraction).
+    pub illum: Option<u32>,
+    /// `map_Kd`: the diffuse colour's image, relative to the MTL file.
+    pub map_kd: Option<String>,
+    /// The line of each statement, by keyword, for messages about its value.
+    pub lines: HashMap<&'static str, usize>,
+}
+
+/// Reads MTL text.
+pub fn parse_mtl(text: &str) -> Result<Vec<MtlMaterial>, LineError> {
+    let mut out: Vec<MtlMaterial> = Vec::new();
+    for (index, raw) in text.lines().enumerate() {
+        let line = index + 1;
+        let fail = |message: String| LineError { line, message };
+        let content = raw.split('#').next().unwrap_or("").trim();
+        let mut words = content.split_ascii_whitespace();
+        let Some(keyword) = words.next() else {
+            continue;
+        };
+        if keyword == "newmtl" {
+            let name = rest_of(content, keyword);
+            if name.is_empty() {
+                return Err(fail("`newmtl` needs a material name".into()));
+            }
+            out.push(MtlMaterial {
+                name: name.to_string(),
+                line,
+                ..Default::default()
+            });
+            continue;
+        }
+        const KNOWN: [&str; 10] = [
+            "Kd", "Ka", "Ks", "Ke", "Ns", "d", "Tr", "Ni", "illum", "map_Kd",
+        ];
+        let Some(&known) = KNOWN.iter().find(|&&k| k == keyword) else {
+            continue; // other maps, Tf, sharpness: nothing prism draws
+        };
+        let Some(m) = out.last_mut() else {
+            return Err(fail(format!("`{keyword}` comes before any `newmtl`")));
+        };
+        m.lines.insert(known, line);
+        let color = |words| -> Result<[f32; 3], LineError> {
+            let n = numbers::<3>(words, keyword, line)?;
+            match n.len {
+                1 => Ok([n.values[0]; 3]),
+                3 => Ok(n.values),
+                k => Err(LineError {
+                    line,
+                    message: format!("`{keyword}` needs r g b, got {k} numbers"),
+                }),
+            }
+        };
+        let one = |words| -> Result<f32, LineError> {
+            let n = numbers::<1>(words, keyword, line)?;
+            if n.len == 1 {
+                Ok(n.values[0])
+            } else {
+                Err(LineError {
+                    line,
+                    message: format!("`{keyword}` needs one number"),
+                })
+            }
+        };
+        match known {
+            "Kd" => m.kd = Some(color(words)?),
+            "Ka" => m.ka = Some(color(words)?),
+            "Ks" => m.ks = Some(color(words)?),
+            "Ke" => m.ke = Some(color(words)?),
+            "Ns" => m.ns = Some(one(words)?),
+            "d" => m.transparency = Some(1.0 - one(words)?),
+            "Tr" => m.transparency = Some(one(words)?),
+            "Ni" => m.ni = Some(one(words)?),
+            "illum" => {
+                let v = one(words)?;
+                if !((0.0..=10.0).contains(&v) && v.fract() == 0.0) {
+                    return Err(fail(format!(
+                        "`illum` must be a whole number 0 to 10, got {v}"
+                    )));
+                }
+                m.illum = Some(v as u32);
+            }
+            "map_Kd" => {
+                // Options (-s, -o, …) come before the file name, which is last.
+                let name = words.last().unwrap_or("");
+                if name.is_empty() {
+                    return Err(fail("`map_Kd` needs an image file name".into()));
+                }
+                m.map_kd = Some(name.to_string());
+            }
+            _ => unreachable!(),
+        }
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn faces_are_triangulated_and_corners_shared() {
+        let obj = "# a square and a triangle\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\n\
+                   f 1 2 3 4\nf -4 5 -3\n";
+        let file = parse_obj(obj, 100, false).unwrap();
+        assert_eq!(file.parts.len(), 1);
+        let mesh = &file.parts[0].mesh;
+        assert_eq!(mesh.triangle_count(), 3);
+        assert_eq!(mesh.vertex_count(), 5);
+        assert!(!mesh.is_smooth());
+        assert!(parse_obj(obj, 100, true).unwrap().parts[0].mesh.is_smooth());
+    }
+
+    #[test]
+    fn materials_split_parts_and_uvs_normals_are_kept() {
+        let obj = "mtllib a b.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nvn 0 0 1\n\
+                   usemtl red\nf 1/1/1 2/2/1 3/3/1\nusemtl blue\nf 1//1 3//1 2//1\nusemtl red\nf 3 2 1\n";
+        let file = parse_obj(obj, 100, true).unwrap();
+        assert_eq!(file.libraries, vec![("a b.mtl".to_string(), 1)]);
+        let names: Vec<_> = file
+            .parts
+            .iter()
+            .map(|p| p.material.clone().unwrap())
+            .collect();
+        assert_eq!(names, ["red", "blue"]);
+        assert_eq!(file.parts[0].line, 9);
+        // Red: one face with uvs, one without, so the part has none.
+        assert_eq!(file.parts[0].mesh.triangle_count(), 2);
+        assert!(!file.parts[0].mesh.has_uvs());
+        assert!(file.parts[1].mesh.is_smooth());
+    }
+
+    #[test]
+    fn malformed_lines_are_named() {
+        let cases = [
+            ("v 0 0\n", 1, "`v` needs x y z"),
+            ("v 0 0 0\nv 1 x 0\n", 2, "\"x\" is not a number"),
+            (
+                "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n",
+                4,
+                "at least three corners",
+            ),
+            (
+                "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n",
+                4,
+                "vertex index 4 is out of range",
+            ),
+            (
+                "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 0\n",
+                4,
+                "vertex index 0 is out of range",
+            ),
+            (
+                "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/2 2 3\n",
+                4,
+                "texture coordinate index 2",
+            ),
+            (
+                "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\nf 1/1/1/1 2 3\n",
+                6,
+                "more than three",
+            ),
+            ("v 0 0 0\nv 1 0 inf\n", 2, "not a finite number"),
+            ("v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n", 4, "no area"),
+            ("v 0 0 0\n", 1, "no faces"),
+            ("v 0 0 0 0\n", 1, "weight w of 0"),
+        ];
+        for (text, line, words) in cases {
+            let e = parse_obj(text, 100, true).unwrap_err();
+            assert_eq!(e.line, line, "{text:?}: {e:?}");
+            assert!(e.message.contains(words), "{text:?}: {}", e.message);
+        }
+        let big = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3 4\nf 1 2 3\n";
+        let e = parse_obj(big, 2, true).unwrap_err();
+        assert_eq!(e.line, 6);
+    }
+
+    #[test]
+    fn mtl_statements_are_read() {
+        let mtl = "newmtl glass\nKd 0.1 0.2 0.3\nKs 1\nNs 200\nd 0.25\nNi 1.5\nillum 7\n\
+                   newmtl tex\nmap_Kd -s 2 2 1 grain.jpg\nmap_Bump ignored.png\n";
+        let m = parse_mtl(mtl).unwrap();
+        assert_eq!(m.len(), 2);
+        assert_eq!(m[0].kd, Some([0.1, 0.2, 0.3]));
+        assert_eq!(m[0].ks, Some([1.0; 3]));
+        assert_eq!(m[0].transparency, Some(0.75));
+        assert_eq!((m[0].ni, m[0].illum), (Some(1.5), Some(7)));
+        assert_eq!(m[0].lines["Ni"], 6);
+        // Options come before the file name: the last word is the name.
+        assert_eq!(m[1].map_kd.as_deref(), Some("grain.jpg"));
+        for (text, line) in [
+            ("Kd 1 1 1\n", 1),
+            ("newmtl a\nKd 1 1\n", 2),
+            ("newmtl a\nillum 2.5\n", 2),
+        ] {
+            assert_eq!(parse_mtl(text).unwrap_err().line, line, "{text:?}");
+        }
+    }
+}

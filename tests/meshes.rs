@@ -1,0 +1,471 @@
+//! Triangle meshes from OBJ files, transforms on objects, and instancing: what is drawn
+//! against what is known (the same solid as polygons, an analytic ellipsoid, POV-Ray's
+//! rotation convention), shared models, and every bad mesh or placement refused with its
+//! file and line.
+
+use glam::Vec3;
+use prism::accel::{Reach, Surface};
+use prism::geometry::{Ray, RayQuery};
+use prism::render::{self, RenderSettings};
+use prism::scene::{PreparedScene, Scene, SceneError, ShapeDesc, load_scene, parse_scene};
+use std::path::Path;
+use std::sync::Arc;
+
+const CAMERA: &str = "[camera]\neye = [0, 3, 8]\nlook_at = [0, 0, 0]\nfov = 40\n\n\
+                      [render]\nambient = [0.1, 0.1, 0.1]\n\n\
+                      [[lights]]\nposition = [4, 8, 6]\n\n\
+                      [materials.red]\ncolor = [0.9, 0.2, 0.1]\n\n";
+
+/// A unit cube from −1 to 1, each face two outward-wound triangles, written as OBJ.
+const CUBE_OBJ: &str = "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\n\
+                        v -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n\
+                        f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 4 8 7 3\nf 1 5 8 4\nf 2 3 7 6\n";
+
+/// The same cube as six polygons (corners as in CUBE_OBJ's faces).
+fn cube_polygons() -> String {
+    let v = [
+        [-1, -1, -1],
+        [1, -1, -1],
+        [1, 1, -1],
+        [-1, 1, -1],
+        [-1, -1, 1],
+        [1, -1, 1],
+        [1, 1, 1],
+        [-1, 1, 1],
+    ];
+    let faces = [
+        [1, 4, 3, 2],
+        [5, 6, 7, 8],
+        [1, 2, 6, 5],
+        [4, 8, 7, 3],
+        [1, 5, 8, 4],
+        [2, 3, 7, 6],
+    ];
+    faces
+        .iter()
+        .map(|f| {
+            let corners: Vec<String> = f.iter().map(|&i| format!("{:?}", v[i - 1])).collect();
+            format!(
+                "[[polygons]]\nmaterial = \"red\"\nvertices = [{}]\n",
+                corners.join(", ")
+            )
+        })
+        .collect()
+}
+
+/// A folder with `files` in it and `scene.toml` holding `scene`; the scene loaded.
+fn load_with(
+    files: &[(&str, &str)],
+    scene: &str,
+) -> (tempfile::TempDir, Result<Scene, SceneError>) {
+    let dir = tempfile::tempdir().unwrap();
+    for (name, text) in files {
+        let path = dir.path().join(name);
+        std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+        std::fs::write(path, text).unwrap();
+    }
+    let path = dir.path().join("scene.toml");
+    std::fs::write(&path, scene).unwrap();
+    let loaded = load_scene(&path);
+    (dir, loaded)
+}
+
+fn image(scene: &Scene, w: u32, h: u32) -> Vec<u8> {
+    let prepared = Arc::new(PreparedScene::new(scene));
+    render::render(
+        prepared,
+        scene.camera,
+        RenderSettings::new(w, h, 2),
+        |_, _| {},
+    )
+    .accumulator()
+    .to_rgb8()
+    .into_raw()
+}
+
+fn bunny_path() -> String {
+    format!("{}/assets/meshes/bunny.obj", env!("CARGO_MANIFEST_DIR"))
+}
+
+/// A faceted OBJ cube draws what the same cube as polygons draws, rotated or not.
+#[test]
+fn an_obj_cube_draws_as_the_same_polygons() {
+    for placement in ["", "rotate = [20, 35, 0]\ntranslate = [0.5, 0, 0]\n"] {
+        let mesh_scene = format!(
+            "{CAMERA}[[meshes]]\npath = \"cube.obj\"\nmaterial = \"red\"\nsmooth = false\n{placement}"
+        );
+        let (_dir, mesh) = load_with(&[("cube.obj", CUBE_OBJ)], &mesh_scene);
+        let polygons: String = cube_polygons()
+            .split("[[polygons]]\n")
+            .filter(|s| !s.is_empty())
+            .map(|p| format!("[[polygons]]\n{placement}{p}"))
+            .collect();
+        let (_dir2, poly) = load_with(&[], &format!("{CAMERA}{polygons}"));
+        let (a, b) = (
+            image(&mesh.unwrap(), 160, 120),
+            image(&poly.unwrap(), 160, 120),
+        );
+        let differing = a
+            .iter()
+            .zip(&b)
+            .filter(|(x, y)| x.abs_diff(**y) > 1)
+            .count();
+        // Only pixels on the silhouette, where the two triangulations' edges cross one
+        // pixel's subsamples differently, may differ, and by little.
+        assert!(
+            differing <= a.len() / 500,
+            "{differing} channels differ ({placement:?})"
+        );
+        assert!(a.iter().any(|&c| c > 100), "the cube is drawn");
+    }
+}
+
+/// The bunny loads with its 3,674 triangles, smooth unless asked not to be; the same file
+/// placed twice is built once (one model shared by both instances).
+#[test]
+fn the_bunny_loads_once_for_many_instances() {
+    let scene = format!(
+        "{CAMERA}[[meshes]]\nname = \"a\"\npath = \"{0}\"\nscale = 0.2\n\n\
+         [[meshes]]\nname = \"b\"\npath = \"{0}\"\nscale = 0.2\ntranslate = [2, 0, 0]\nrotate = [0, 90, 0]\n\n\
+         [[meshes]]\nname = \"c\"\npath = \"{0}\"\nscale = 0.2\nsmooth = false\ntranslate = [-2, 0, 0]\n",
+        bunny_path()
+    );
+    let scene = parse_scene(&scene, Path::new("s.toml"), Path::new(".")).unwrap();
+    let meshes: Vec<_> = scene
+        .objects
+        .iter()
+        .map(|o| match &o.shape {
+            ShapeDesc::Mesh { mesh, .. } => mesh.clone(),
+            other => panic!("{other:?}"),
+        })
+        .collect();
+    assert_eq!(meshes.len(), 3);
+    assert_eq!(meshes[0].triangle_count(), 3674);
+    assert!(meshes[0].is_smooth() && !meshes[2].is_smooth());
+    assert!(Arc::ptr_eq(&meshes[0], &meshes[1]));
+    assert!(!Arc::ptr_eq(&meshes[0], &meshes[2]));
+    let prepared = PreparedScene::new(&scene);
+    let models: Vec<_> = prepared
+        .geometry
+        .accel()
+        .primitives()
+        .iter()
+        .map(|p| match &p.surface {
+            Surface::Instance(i) => i.model().clone(),
+            Surface::Shape(s) => panic!("{s:?}"),
+        })
+        .collect();
+    assert_eq!(models.len(), 3);
+    let shared = models.iter().filter(|m| Arc::ptr_eq(m, &models[0])).count();
+    assert_eq!(shared, 2, "a and b share one model");
+}
+
+/// The nearest hit along a ray from `origin` towards `dir` (scene coordinates are relative
+/// to the camera's eye).
+fn first_hit(scene: &Scene, origin: Vec3, dir: Vec3) -> Option<Vec3> {
+    let prepared = PreparedScene::new(scene);
+    let o = origin - scene.origin.as_vec3();
+    let q = RayQuery::new(Ray::new(o, dir));
+    let accel = prepared.geometry.accel();
+    let hit = accel.nearest_hit(&q, Reach::After(0.0))?;
+    Some(Vec3::from(accel.surface(&q, &hit).point) + scene.origin.as_vec3())
+}
+
+/// Transforms follow POV-Ray: scale, then rotate about x, y, z (right-handed: +90 about y
+/// turns +x into −z), then translate; a sphere scaled unevenly is an ellipsoid, a cylinder
+/// turned about z lies along x.
+#[test]
+fn transforms_put_shapes_where_povray_would() {
+    let scene = format!(
+        "{CAMERA}[[spheres]]\ncenter = [1, 0, 0]\nradius = 0.25\nrotate = [0, 90, 0]\ntranslate = [0, 0, -3]\n\n\
+         [[spheres]]\ncenter = [0, 0, 0]\nradius = 1\nscale = [2, 1, 1]\ntranslate = [0, 5, 0]\n\n\
+         [[cylinders]]\nbase = [0, 0, 0]\nradius = 0.5\nheight = 4\nrotate = [0, 0, -90]\ntranslate = [0, -5, 0]\n"
+    );
+    let scene = parse_scene(&scene, Path::new("s.toml"), Path::new(".")).unwrap();
+    // The small sphere: (1, 0, 0) turned to (0, 0, −1), moved to (0, 0, −4).
+    match scene.objects[0].shape {
+        ShapeDesc::Sphere { center, radius } => {
+            let world = center + scene.origin.as_vec3();
+            assert!(
+                (world - Vec3::new(0.0, 0.0, -4.0)).length() < 1e-5,
+                "{world}"
+            );
+            assert_eq!(radius, 0.25);
+        }
+        ref other => panic!("{other:?}"),
+    }
+    // The ellipsoid reaches x = ±2 at y = 5 and y = 5 ± 1 at x = 0.
+    let side = first_hit(&scene, Vec3::new(-10.0, 5.0, 0.0), Vec3::X).unwrap();
+    assert!((side - Vec3::new(-2.0, 5.0, 0.0)).length() < 1e-5, "{side}");
+    let top = first_hit(&scene, Vec3::new(0.0, 9.0, 0.0), Vec3::NEG_Y).unwrap();
+    assert!((top - Vec3::new(0.0, 6.0, 0.0)).length() < 1e-5, "{top}");
+    // The cylinder, turned −90 about z, runs from x = 0 to x = 4 at y = −5.
+    let end = first_hit(&scene, Vec3::new(10.0, -5.0, 0.0), Vec3::NEG_X).unwrap();
+    assert!((end - Vec3::new(4.0, -5.0, 0.0)).length() < 1e-5, "{end}");
+    let round = first_hit(&scene, Vec3::new(2.0, -5.0, 10.0), Vec3::NEG_Z).unwrap();
+    assert!(
+        (round - Vec3::new(2.0, -5.0, 0.5)).length() < 1e-5,
+        "{round}"
+    );
+    assert!(first_hit(&scene, Vec3::new(-0.5, -5.0, 10.0), Vec3::NEG_Z).is_none());
+}
+
+/// A smooth mesh shades like the surface it approximates, and its shading normals let no
+/// light through to the side facing away: the bunny lit from straight above is black
+/// underneath wherever the true surface faces down, and nowhere is NaN.
+#[test]
+fn smooth_shading_does_not_leak_light() {
+    let scene = format!(
+        "[camera]\neye = [0, -20, 0]\nlook_at = [0, 5, 0]\nup = [0, 0, -1]\nfov = 50\n\n\
+         [render]\nambient = [0, 0, 0]\nbackground = [0, 0, 0]\n\n\
+         [[lights]]\nposition = [0, 100, 0]\n\n\
+         [materials.white]\ncolor = [1, 1, 1]\nspecular = 0\n\n\
+         [[meshes]]\npath = \"{}\"\nmaterial = \"white\"\n",
+        bunny_path()
+    );
+    let scene = parse_scene(&scene, Path::new("s.toml"), Path::new(".")).unwrap();
+    let prepared = PreparedScene::new(&scene);
+    let mut integrator = prism::integrator::Integrator::new(&prepared, 0.0);
+    let accel = prepared.geometry.accel();
+    let mut seen = 0;
+    for i in 0..40 {
+        for j in 0..40 {
+            let target = Vec3::new(-5.0 + i as f32 * 0.25, 0.0, -4.0 + j as f32 * 0.2);
+            let eye = Vec3::new(target.x, -20.0, target.z) - scene.origin.as_vec3();
+            let q = RayQuery::new(Ray::new(eye, Vec3::Y));
+            let Some(hit) = accel.nearest_hit(&q, Reach::After(0.0)) else {
+                continue;
+            };
+            let surface = accel.surface(&q, &hit);
+            let color = integrator
+                .trace_primary(Reach::After(0.0), || Ray::new(eye, Vec3::Y))
+                .color;
+            assert!(color.is_finite());
+            if surface.normal.y < 0.0 {
+                assert_eq!(color, Vec3::ZERO, "light leaked at {target}");
+                seen += 1;
+            }
+        }
+    }
+    assert!(seen > 100, "{seen} points seen");
+}
+
+/// A smooth mesh of a subdivided octahedron pushed onto the unit sphere shades within a
+/// few per cent of the sphere itself.
+#[test]
+fn a_smooth_mesh_sphere_shades_like_the_sphere() {
+    // An octahedron subdivided three times, its vertices on the unit sphere.
+    let mut v = vec![
+        Vec3::X,
+        Vec3::NEG_X,
+        Vec3::Y,
+        Vec3::NEG_Y,
+        Vec3::Z,
+        Vec3::NEG_Z,
+    ];
+    let mut f: Vec<[usize; 3]> = vec![
+        [0, 2, 4],
+        [4, 2, 1],
+        [1, 2, 5],
+        [5, 2, 0],
+        [4, 3, 0],
+        [1, 3, 4],
+        [5, 3, 1],
+        [0, 3, 5],
+    ];
+    for _ in 0..3 {
+        let mut mid = std::collections::HashMap::new();
+        let mut next = Vec::new();
+        for [a, b, c] in f {
+            let mut m = |x: usize, y: usize| {
+                *mid.entry((x.min(y), x.max(y))).or_insert_with(|| {
+                    v.push(((v[x] + v[y]) / 2.0).normalize());
+                    v.len() - 1
+                })
+            };
+            let (ab, bc, ca) = (m(a, b), m(b, c), m(c, a));
+            next.extend([[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]);
+        }
+        f = next;
+    }
+    let mut obj = String::new();
+    for p in &v {
+        obj += &format!("v {} {} {}\nvn {} {} {}\n", p.x, p.y, p.z, p.x, p.y, p.z);
+    }
+    for [a, b, c] in &f {
+        obj += &format!("f {0}//{0} {1}//{1} {2}//{2}\n", a + 1, b + 1, c + 1);
+    }
+    let body = "[materials.white]\ncolor = [1, 1, 1]\nspecular = 0\n";
+    let camera = "[camera]\neye = [0, 0, 6]\nlook_at = [0, 0, 0]\nfov = 30\n\n\
+                  [render]\nambient = [0, 0, 0]\n\n[[lights]]\nposition = [5, 5, 5]\n\n";
+    let (_d, mesh) = load_with(
+        &[("ball.obj", &obj)],
+        &format!("{camera}{body}[[meshes]]\npath = \"ball.obj\"\nmaterial = \"white\"\n"),
+    );
+    let (_d2, sphere) = load_with(
+        &[],
+        &format!(
+            "{camera}{body}[[spheres]]\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"white\"\n"
+        ),
+    );
+    let (a, b) = (
+        image(&mesh.unwrap(), 120, 120),
+        image(&sphere.unwrap(), 120, 120),
+    );
+    let inside: Vec<usize> = (0..a.len()).filter(|&i| a[i] > 20 && b[i] > 20).collect();
+    assert!(inside.len() > 3000);
+    let mean_difference: f64 = inside
+        .iter()
+        .map(|&i| (a[i] as f64 - b[i] as f64).abs())
+        .sum::<f64>()
+        / inside.len() as f64;
+    assert!(mean_difference < 3.0, "mean difference {mean_difference}");
+}
+
+/// MTL materials: the diffuse colour, a highlight, transparency and, for `illum 7`, the
+/// index of refraction; the entry's own `material` wins over the file's.
+#[test]
+fn mtl_materials_map_onto_prisms() {
+    let obj = format!("mtllib m.mtl\nusemtl glass\n{CUBE_OBJ}usemtl\n");
+    let obj = obj.replace("usemtl\n", "");
+    let mtl = "newmtl glass\nKd 0.2 0.4 0.6\nKa 0.5 0.5 0.5\nKs 0.3 0.3 0.3\nNs 80\nd 0.25\nNi 1.5\nillum 7\n";
+    let scene = format!("{CAMERA}[[meshes]]\npath = \"m/cube.obj\"\n");
+    let (_dir, loaded) = load_with(&[("m/cube.obj", &obj), ("m/m.mtl", mtl)], &scene);
+    let scene = loaded.unwrap();
+    let m = &scene.objects[0].material;
+    assert_eq!(m.texture.mean(), Vec3::new(0.2, 0.4, 0.6));
+    assert!((m.ambient - 0.5).abs() < 1e-6 && (m.specular - 0.3).abs() < 1e-6);
+    assert_eq!(m.shininess, 80.0);
+    assert!((m.transparency - 0.75).abs() < 1e-6);
+    assert_eq!(m.eta, Some(1.5));
+    assert!((m.reflectivity - 0.3).abs() < 1e-6);
+    assert_eq!(scene.objects[0].name, "meshes 0");
+    // With a material of its own, the library is not even read.
+    let own = format!("{CAMERA}[[meshes]]\npath = \"cube.obj\"\nmaterial = \"red\"\n");
+    let (_dir, loaded) = load_with(&[("cube.obj", &obj)], &own);
+    assert_eq!(
+        loaded.unwrap().objects[0].material.texture.mean(),
+        Vec3::new(0.9, 0.2, 0.1)
+    );
+}
+
+/// Every bad mesh, library and placement is refused with the file and line to fix.
+#[test]
+fn bad_meshes_and_placements_name_file_and_line() {
+    // (files beside the scene, the scene's entry, where the message points, what it says)
+    type Case = (
+        Vec<(&'static str, String)>,
+        String,
+        &'static str,
+        &'static str,
+    );
+    let cases: Vec<Case> = vec![
+        (
+            vec![],
+            "[[meshes]]\npath = \"none.obj\"\n".into(),
+            "scene.toml:",
+            "cannot read mesh",
+        ),
+        (
+            vec![("a.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n".into())],
+            "[[meshes]]\npath = \"a.obj\"\n".into(),
+            "a.obj:4:",
+            "vertex index 7 is out of range",
+        ),
+        (
+            vec![("a.obj", "v 0 0 0\nv 1 0 x\n".into())],
+            "[[meshes]]\npath = \"a.obj\"\n".into(),
+            "a.obj:2:",
+            "not a number",
+        ),
+        (
+            vec![("a.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n".into())],
+            "[[meshes]]\npath = \"a.obj\"\n".into(),
+            "a.obj:2:",
+            "not a finite number",
+        ),
+        (
+            vec![("a.obj", "# nothing\nv 0 0 0\n".into())],
+            "[[meshes]]\npath = \"a.obj\"\n".into(),
+            "a.obj:2:",
+            "no faces",
+        ),
+        (
+            vec![("a.obj", format!("mtllib gone.mtl\nusemtl x\n{CUBE_OBJ}"))],
+            "[[meshes]]\npath = \"a.obj\"\n".into(),
+            "a.obj:1:",
+            "cannot read material library",
+        ),
+        (
+            vec![
+                ("a.obj", format!("mtllib a.mtl\nusemtl y\n{CUBE_OBJ}")),
+                ("a.mtl", "newmtl x\nKd 1 1 1\n".into()),
+            ],
+            "[[meshes]]\npath = \"a.obj\"\n".into(),
+            "a.obj:2:",
+            "defines \"y\"",
+        ),
+        (
+            vec![
+                ("a.obj", format!("mtllib a.mtl\nusemtl x\n{CUBE_OBJ}")),
+                ("a.mtl", "newmtl x\nKd 1 1 1\nNi 0\nillum 7\n".into()),
+            ],
+            "[[meshes]]\npath = \"a.obj\"\n".into(),
+            "a.mtl:3:",
+            "`Ni` must lie in",
+        ),
+        (
+            vec![
+                ("a.obj", format!("mtllib a.mtl\nusemtl x\n{CUBE_OBJ}")),
+                ("a.mtl", "newmtl x\nKd 2 1 1\n".into()),
+            ],
+            "[[meshes]]\npath = \"a.obj\"\n".into(),
+            "a.mtl:2:",
+            "`Kd` must lie in",
+        ),
+        (
+            vec![("a.obj", CUBE_OBJ.into())],
+            "[[meshes]]\npath = \"a.obj\"\nscale = 0\n".into(),
+            "scene.toml:",
+            "`scale` must be greater than zero",
+        ),
+        (
+            vec![],
+            "[[spheres]]\ncenter = [0, 0, 0]\nradius = 1\nscale = [1, -2, 1]\n".into(),
+            "scene.toml:",
+            "`scale` must be greater than zero",
+        ),
+        (
+            vec![],
+            "[[spheres]]\ncenter = [0, 0, 0]\nradius = 1\nscale = \"big\"\n".into(),
+            "scene.toml:",
+            "`scale` must be a number",
+        ),
+        (
+            vec![],
+            "[[spheres]]\ncenter = [0, 0, 0]\nradius = 1\nrotate = [0, nan, 0]\n".into(),
+            "scene.toml:",
+            "`rotate` must hold finite numbers",
+        ),
+        (
+            vec![("a.obj", CUBE_OBJ.into())],
+            "[[meshes]]\npath = \"a.obj\"\ntranslate = [1e13, 0, 0]\n".into(),
+            "scene.toml:",
+            "`translate` must hold finite numbers",
+        ),
+    ];
+    for (files, entry, place, words) in cases {
+        let files: Vec<(&str, &str)> = files.iter().map(|(n, t)| (*n, t.as_str())).collect();
+        let (_dir, loaded) = load_with(&files, &format!("{CAMERA}{entry}"));
+        let message = loaded.unwrap_err().to_string();
+        assert!(message.contains(place), "{entry:?}: {message}");
+        assert!(message.contains(words), "{entry:?}: {message}");
+        if place == "scene.toml:" {
+            // The line of the entry's field, past the shared preamble.
+            let line: usize = message.split(':').nth(1).unwrap().trim().parse().unwrap();
+            assert!(line > CAMERA.lines().count(), "{message}");
+        } else {
+            assert!(message.contains("read by meshes[0]"), "{message}");
+        }
+    }
+}
