@@ -106,23 +106,24 @@ impl Model {
         }
     }
 
-    /// The surface point of `hit` in the model's space.
+    /// The surface point of `hit` in the model's space; `local` gives the ray there, which
+    /// only a shape needs (a mesh's point comes from its weights).
     #[inline]
-    fn surface(&self, q: &RayQuery, hit: &ShapeHit) -> SurfacePoint {
+    fn surface(&self, local: impl FnOnce() -> RayQuery, hit: &ShapeHit) -> SurfacePoint {
         match (self, hit.detail) {
             (Model::Mesh { mesh, .. }, HitDetail::Mesh { triangle, b }) => {
                 mesh.surface(triangle, b)
             }
-            (Model::Shape(shape), _) => shape.surface(q, hit),
+            (Model::Shape(shape), _) => shape.surface(&local(), hit),
             (_, detail) => unreachable!("hit {detail:?} does not belong to a mesh"),
         }
     }
 
     #[inline]
-    fn uv(&self, q: &RayQuery, hit: &ShapeHit) -> (f32, f32) {
+    fn uv(&self, local: impl FnOnce() -> RayQuery, hit: &ShapeHit) -> (f32, f32) {
         match (self, hit.detail) {
             (Model::Mesh { mesh, .. }, HitDetail::Mesh { triangle, b }) => mesh.uv(triangle, b),
-            (Model::Shape(shape), _) => shape.uv(&shape.surface(q, hit), hit),
+            (Model::Shape(shape), _) => shape.uv(&shape.surface(&local(), hit), hit),
             (_, detail) => unreachable!("hit {detail:?} does not belong to a mesh"),
         }
     }
@@ -186,7 +187,7 @@ impl Instance {
     /// The surface point of `hit` in the scene's space, its error bound carried across.
     #[inline]
     pub fn surface(&self, q: &RayQuery, hit: &ShapeHit) -> SurfacePoint {
-        let local = self.model.surface(&self.local(q), hit);
+        let local = self.model.surface(|| self.local(q), hit);
         let (point, error) = self.transform.point_to_scene(local.point, local.error);
         let normal = self.transform.normal_to_scene(local.normal);
         let shading = if local.shading == local.normal {
@@ -206,7 +207,7 @@ impl Instance {
     /// map turns with it).
     #[inline]
     pub fn uv(&self, q: &RayQuery, hit: &ShapeHit) -> (f32, f32) {
-        self.model.uv(&self.local(q), hit)
+        self.model.uv(|| self.local(q), hit)
     }
 }
 

@@ -39,6 +39,17 @@ impl Aabb {
         }
     }
 
+    /// Its eight corners (corner i takes max on axis k where bit k of i is set).
+    pub fn corners(&self) -> [Vec3; 8] {
+        std::array::from_fn(|i| {
+            Vec3::new(
+                if i & 1 == 0 { self.min.x } else { self.max.x },
+                if i & 2 == 0 { self.min.y } else { self.max.y },
+                if i & 4 == 0 { self.min.z } else { self.max.z },
+            )
+        })
+    }
+
     /// The box's centre.
     pub fn centroid(&self) -> Vec3 {
         (self.min + self.max) * 0.5

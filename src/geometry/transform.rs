@@ -108,13 +108,8 @@ impl Transform {
             return *b;
         }
         let mut out = Aabb::EMPTY;
-        for corner in 0..8 {
-            let p = Vec3A::new(
-                if corner & 1 == 0 { b.min.x } else { b.max.x },
-                if corner & 2 == 0 { b.min.y } else { b.max.y },
-                if corner & 4 == 0 { b.min.z } else { b.max.z },
-            );
-            let (q, e) = self.point_to_scene(p, Vec3A::ZERO);
+        for p in b.corners() {
+            let (q, e) = self.point_to_scene(p.into(), Vec3A::ZERO);
             out = out.grow((q - e).into()).grow((q + e).into());
         }
         out

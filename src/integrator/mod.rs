@@ -246,16 +246,17 @@ impl<'a> Integrator<'a> {
         color
     }
 
-    /// The direction `turn(ns)` when it leaves on the side of the true surface it should
-    /// (`outward`: the side the ray arrived on), else `turn(n)`: a shading normal never sends a
-    /// reflected ray into the surface or a refracted one back out.
+    /// The direction `turn` gives about the shading normal, when it leaves on the side of
+    /// the true surface it claims (`turn` returns the direction and whether it goes back out
+    /// on the side the ray arrived on), else the one it gives about the true normal: a shading
+    /// normal never sends a reflected ray into the surface or a refracted one back out.
     #[inline]
-    fn turned(&self, at: &Shading, outward: bool, turn: impl Fn(Vec3A) -> Vec3A) -> Vec3A {
-        let dir = turn(at.ns);
+    fn turned(&self, at: &Shading, turn: impl Fn(Vec3A) -> (Vec3A, bool)) -> Vec3A {
+        let (dir, outward) = turn(at.ns);
         if at.ns == at.n || (dir.dot(at.n) > 0.0) == outward {
             dir
         } else {
-            turn(at.n)
+            turn(at.n).0
         }
     }
 

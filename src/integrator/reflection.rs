@@ -18,7 +18,7 @@ impl Integrator<'_> {
     /// The light the mirror ray from `at` brings back (before the reflectivity scales it).
     #[inline]
     pub(super) fn reflection(&mut self, at: &Shading, path: Path) -> Vec3A {
-        let dir = self.turned(at, true, |n| reflect(at.q.ray.dir, n));
+        let dir = self.turned(at, |n| (reflect(at.q.ray.dir, n), true));
         let origin = self.leave(&at.surface, at.n, dir);
         self.counts.secondary += 1;
         let reflected = RayQuery::new(Ray::new(origin, dir));

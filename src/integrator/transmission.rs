@@ -41,11 +41,10 @@ impl Integrator<'_> {
             let ratio = if at.entering { 1.0 / eta } else { eta };
             // Past the critical angle the transmitted light is reflected inside; either
             // way the ray must go where the true surface says.
-            let dir = match refract(ray.dir, at.ns, ratio) {
-                Some(dir) if at.ns == at.n || dir.dot(at.n) < 0.0 => dir,
-                Some(_) => refract(ray.dir, at.n, ratio).unwrap_or_else(|| reflect(ray.dir, at.n)),
-                None => self.turned(at, true, |n| reflect(ray.dir, n)),
-            };
+            let dir = self.turned(at, |n| match refract(ray.dir, n, ratio) {
+                Some(dir) => (dir, false),
+                None => (reflect(ray.dir, n), true),
+            });
             let origin = self.leave(&at.surface, at.n, dir);
             let q = RayQuery::new(Ray::new(origin, dir));
             let inside = self.inside(at, dir);

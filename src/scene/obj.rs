@@ -61,14 +61,8 @@ pub fn parse_obj(text: &str, max_triangles: usize, smooth: bool) -> Result<ObjFi
     let mut libraries = Vec::new();
     let mut triangle_count = 0usize;
     let mut corners: Vec<Corner> = Vec::new();
-    for (index, raw) in text.lines().enumerate() {
-        let line = index + 1;
+    for (line, content, keyword, words) in statements(text) {
         let fail = |message: String| LineError { line, message };
-        let content = raw.split('#').next().unwrap_or("").trim();
-        let mut words = content.split_ascii_whitespace();
-        let Some(keyword) = words.next() else {
-            continue;
-        };
         match keyword {
             "v" => {
                 // x y z, an optional w, or (a common extension) a colour r g b.
@@ -185,6 +179,19 @@ pub fn parse_obj(text: &str, max_triangles: usize, smooth: bool) -> Result<ObjFi
         });
     }
     Ok(ObjFile { parts, libraries })
+}
+
+/// The statements of OBJ or MTL text: each non-blank line's number (from 1), its text
+/// without the comment, its keyword, and the words after the keyword.
+fn statements(
+    text: &str,
+) -> impl Iterator<Item = (usize, &str, &str, std::str::SplitAsciiWhitespace<'_>)> {
+    text.lines().enumerate().filter_map(|(index, raw)| {
+        let content = raw.split('#').next().unwrap_or("").trim();
+        let mut words = content.split_ascii_whitespace();
+        let keyword = words.next()?;
+        Some((index + 1, content, keyword, words))
+    })
 }
 
 /// Up to N numbers from `words`, all finite; more than N is an error.
@@ -364,14 +371,8 @@ pub struct MtlMaterial {
 /// Reads MTL text.
 pub fn parse_mtl(text: &str) -> Result<Vec<MtlMaterial>, LineError> {
     let mut out: Vec<MtlMaterial> = Vec::new();
-    for (index, raw) in text.lines().enumerate() {
-        let line = index + 1;
+    for (line, content, keyword, words) in statements(text) {
         let fail = |message: String| LineError { line, message };
-        let content = raw.split('#').next().unwrap_or("").trim();
-        let mut words = content.split_ascii_whitespace();
-        let Some(keyword) = words.next() else {
-            continue;
-        };
         if keyword == "newmtl" {
             let name = rest_of(content, keyword);
             if name.is_empty() {

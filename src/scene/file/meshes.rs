@@ -121,13 +121,8 @@ impl Validator<'_> {
         placement: &Placement,
     ) -> Result<(), SceneError> {
         for part in parts {
-            let b = part.mesh.bounds();
-            for corner in 0..8 {
-                let p = DVec3::new(
-                    if corner & 1 == 0 { b.min.x } else { b.max.x } as f64,
-                    if corner & 2 == 0 { b.min.y } else { b.max.y } as f64,
-                    if corner & 4 == 0 { b.min.z } else { b.max.z } as f64,
-                );
+            for p in part.mesh.bounds().corners() {
+                let p = p.as_dvec3();
                 let placed = DVec3::from(placement.point(p.to_array())) - self.origin;
                 if !(placed.is_finite() && placed.abs().max_element() <= limits::MAX_COORDINATE) {
                     return Err(self.field_error(
