@@ -44,6 +44,11 @@ pub const MAX_COORDINATE: f64 = 1.0e12;
 /// square is still a normal f32 number.
 pub const MIN_LENGTH: f64 = 1.0e-12;
 
+/// An infinite plane is traced as a disc this many times wider than the scene's extent from
+/// the eye: its rim then lies below the horizon by at most 1/PLANE_REACH radians, far less
+/// than a pixel.
+pub const PLANE_REACH: f32 = 1.0e4;
+
 /// Indices of refraction: real materials lie between about 1 and 4; values below 1 model
 /// a less dense inside (a bubble). Beyond this range the ratios and their squares that
 /// Snell's law takes would stop being meaningful long before they overflow.

@@ -10,13 +10,14 @@ use proptest::prelude::*;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, OnceLock};
 
-const SEEDS: [&str; 6] = [
+const SEEDS: [&str; 7] = [
     include_str!("../fuzz/corpus/seed.toml"),
     include_str!("../fuzz/corpus/shapes.toml"),
     include_str!("../fuzz/corpus/sphere.toml"),
     include_str!("../fuzz/corpus/glass-box.toml"),
     include_str!("../fuzz/corpus/lights.toml"),
     include_str!("../fuzz/corpus/environment.toml"),
+    include_str!("../fuzz/corpus/solids.toml"),
 ];
 
 /// Values that have broken renderers: overflow when squared or multiplied, underflow,
@@ -49,7 +50,7 @@ const HOSTILE: [&str; 24] = [
 ];
 
 /// Text the fuzzer's dictionary also offers: table headers and keys out of place.
-const FRAGMENTS: [&str; 10] = [
+const FRAGMENTS: [&str; 14] = [
     "[[spheres]]\ncenter = [0, 0, -5]\nradius = 1\n",
     "[[polygons]]\nvertices = [[0, 0, 0], [1, 0, 0], [1, 1e-7, 0]]\n",
     "[[tetrahedra]]\nvertices = [[0,0,0],[1,0,0],[0,1,0],[0,0,1e-9]]\n",
@@ -60,6 +61,10 @@ const FRAGMENTS: [&str; 10] = [
     "name = \"\u{1b}[31m\n\"\n",
     "\u{0}",
     "[materials.x]\nreflectivity = 1\ntransparency = 1\n",
+    "[[tori]]\ncenter = [0, 0, -5]\nmajor_radius = 1e-12\nminor_radius = 9e-13\nrotate = [90, 0, 0]\n",
+    "[[planes]]\npoint = [0, 1e12, 0]\nnormal = [1e-45, 1, 0]\n",
+    "[[cones]]\nbase = [0, 0, -5]\nradius = 0\ntop_radius = 1e12\nheight = 1e-12\ncaps = false\n",
+    "[[boxes]]\nmin = [0, 0, 0]\nmax = [1e-30, 1, 1]\nscale = [1e6, 1e-6, 1]\nrotate = [0, 45, 0]\n",
 ];
 
 #[derive(Clone, Debug)]

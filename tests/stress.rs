@@ -529,3 +529,129 @@ fn meshes_and_transformed_shapes_render_the_same_across_scales() {
         );
     }
 }
+
+/// The gallery of shapes (an infinite plane, a turned box, a cone and a frustum, a tilted
+/// torus, an open glass tube, a disc, an ellipsoid) draws the same image from 10⁻⁴ to 10⁴
+/// times its size, and moved far from the origin.
+#[test]
+fn the_shapes_render_the_same_across_scales_and_far_away() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/shapes.toml");
+    let scene = load_scene(&path).unwrap();
+    let reference = render_image(&scene);
+    for k in -4..=4 {
+        for offset in [DVec3::ZERO, FAR[2]] {
+            let s = scene.transformed(10f32.powi(k), offset * 10f64.powi(k));
+            let fraction = differing(&render_image(&s), &reference, 2);
+            println!(
+                "shapes, scale 1e{k:+}, moved by {offset}: {:.4}% of pixels differ",
+                fraction * 100.0
+            );
+            assert!(
+                fraction <= 0.002,
+                "scale 1e{k}, offset {offset}: {:.3}% differ",
+                fraction * 100.0
+            );
+        }
+    }
+}
+
+/// A point of a box, a cone or a torus, in f64, and whether `p` lies on the shape's
+/// surface within `tolerance`.
+fn on_surface(shape: &prism::geometry::Shape, p: DVec3, tolerance: f64) -> bool {
+    use prism::geometry::Shape;
+    match shape {
+        Shape::Cuboid(b) => {
+            let (lo, hi) = (b.min.as_dvec3(), b.max.as_dvec3());
+            let inside = p.cmpge(lo - tolerance).all() && p.cmple(hi + tolerance).all();
+            let on_face = (0..3)
+                .any(|k| (p[k] - lo[k]).abs() <= tolerance || (p[k] - hi[k]).abs() <= tolerance);
+            inside && on_face
+        }
+        Shape::Cone(c) => {
+            let rel = p - c.base.as_dvec3();
+            let k = (c.top_radius - c.radius) as f64 / c.height as f64;
+            let radial = (rel.x * rel.x + rel.z * rel.z).sqrt();
+            let side = (radial - (c.radius as f64 + k * rel.y)).abs()
+                <= tolerance * (1.0 + k.abs())
+                && rel.y >= -tolerance
+                && rel.y <= c.height as f64 + tolerance;
+            let cap =
+                |y: f64, r: f32| (rel.y - y).abs() <= tolerance && radial <= r as f64 + tolerance;
+            side || cap(0.0, c.radius) || cap(c.height as f64, c.top_radius)
+        }
+        Shape::Torus(t) => {
+            let rel = p - t.center.as_dvec3();
+            let ring = (rel.x * rel.x + rel.z * rel.z).sqrt() - t.major_radius as f64;
+            ((ring * ring + rel.y * rel.y).sqrt() - t.minor_radius as f64).abs() <= tolerance
+        }
+        other => panic!("{other:?}"),
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig {
+        cases: 1500,
+        failure_persistence: None,
+        ..ProptestConfig::default()
+    })]
+
+    /// A ray aimed at a random point of a random box, cone or torus, at random sizes and
+    /// distances from the origin: it hits no later than the aimed-at point, and the hit
+    /// lies on the surface (checked in f64) within its error bound.
+    #[test]
+    fn box_cone_and_torus_hits_lie_on_their_surfaces(
+        kind in 0u8..3, mag in magnitude(), offset in unit(), offset_exp in 0.0f32..3.0,
+        angles in (0.0f32..1.0, 0.0f32..1.0), from in unit(), distance in 1.5f32..300.0,
+        shape_ratio in 0.1f32..0.9,
+    ) {
+        use prism::geometry::{Cone, Cuboid, Shape, Torus};
+        use std::f32::consts::TAU;
+        let c = offset * mag * 10f32.powf(offset_exp);
+        let (a, b) = (angles.0 * TAU, angles.1 * TAU);
+        let (shape, target) = match kind {
+            0 => {
+                let half = Vec3::new(1.0, shape_ratio, 0.5) * mag;
+                // A point on the +x, +y or +z face, by angle a.
+                let axis = (angles.0 * 3.0) as usize % 3;
+                let mut t = Vec3::new(angles.1 * 2.0 - 1.0, shape_ratio - 0.5, 0.3) * half;
+                t[axis] = half[axis];
+                (Shape::Cuboid(Cuboid::new(c - half, c + half)), c + t)
+            }
+            1 => {
+                let (r, h) = (mag, mag * 2.0);
+                let top = r * shape_ratio * (angles.0 > 0.5) as u8 as f32;
+                let y = h * 0.5;
+                let ry = r + (top - r) * 0.5;
+                let t = c + Vec3::new(ry * b.sin(), y, ry * b.cos());
+                (Shape::Cone(Cone { base: c, radius: r, top_radius: top, height: h, caps: true }), t)
+            }
+            _ => {
+                let (big, small) = (mag, mag * shape_ratio * 0.9);
+                let ring = Vec3::new(a.sin(), 0.0, a.cos());
+                let n = ring * b.cos() + Vec3::Y * b.sin();
+                let t = c + ring * big + n * small;
+                (Shape::Torus(Torus { center: c, major_radius: big, minor_radius: small }), t)
+            }
+        };
+        let size = mag * 3.0;
+        let o = target + from * size * distance;
+        let ray = Ray::new(o, target - o);
+        let q = RayQuery::new(ray);
+        let hit = shape.intersect(&q, f32::INFINITY);
+        // The line passes through the target, so it crosses the surface at or before it
+        // (a tangent touch aside: the target is never on a silhouette by more than chance).
+        let Some(hit) = hit else {
+            prop_assume!(false);
+            unreachable!()
+        };
+        prop_assert!(hit.t <= 1.0 + 1e-4, "hit at t = {} beyond the target", hit.t);
+        let s = shape.surface(&q, &hit);
+        prop_assert!((s.normal.length() - 1.0).abs() < 1e-4);
+        let scale = (c.length() + size) as f64;
+        let tolerance = s.error.length() as f64 + 4.0 * f32::EPSILON as f64 * scale;
+        prop_assert!(
+            on_surface(&shape, s.point.as_dvec3(), tolerance),
+            "{:?}: {} off the surface by more than {tolerance}", shape, s.point
+        );
+    }
+}

@@ -1,10 +1,10 @@
-//! Isolated solids: a sphere or capped cylinder (closed and convex) that no other
+//! Isolated solids: a closed convex shape (a sphere, a box, a capped cylinder or cone) that no other
 //! primitive's box comes near. A ray that starts inside one meets nothing else before it
 //! leaves, so its next hit needs no traversal.
 
 use super::bvh::Bvh;
 use super::{Primitive, Surface};
-use crate::geometry::{Aabb, Shape};
+use crate::geometry::Aabb;
 use glam::Vec3;
 
 /// How far apart (relative to the size and the coordinates of a solid's box) another box
@@ -23,10 +23,9 @@ pub fn isolated_solids(
     for (index, primitive) in primitives.iter().enumerate() {
         let object = primitive.object as usize;
         count[object] += 1;
-        if matches!(
-            primitive.surface,
-            Surface::Shape(Shape::Sphere(_) | Shape::Cylinder(_))
-        ) {
+        if let Surface::Shape(shape) = &primitive.surface
+            && shape.is_convex_solid()
+        {
             sole[object] = Some(index as u32);
         }
     }

@@ -1,4 +1,4 @@
-//! Finite cylinders along +y with closed caps. The side solves the seed's quadratic in x and
+//! Finite cylinders along +y, closed by caps or open tubes. The side solves the seed's quadratic in x and
 //! z, written in the same cancellation-free form as the sphere.
 
 use super::aabb::Aabb;
@@ -7,7 +7,7 @@ use crate::numerics::{gamma, stable_quadratic_roots};
 use glam::{Vec2, Vec3, Vec3A};
 use std::f32::consts::PI;
 
-/// An upright cylinder (along +y) closed by two caps.
+/// An upright cylinder (along +y), closed by two caps or open at both ends.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Cylinder {
     /// Centre of the bottom cap.
@@ -16,6 +16,8 @@ pub struct Cylinder {
     pub radius: f32,
     /// Height from the bottom cap to the top cap.
     pub height: f32,
+    /// Whether the ends are closed (a solid) or open (a tube, seen inside and out).
+    pub caps: bool,
 }
 
 /// Which part of the cylinder a ray hit.
@@ -30,17 +32,23 @@ pub enum CylinderPart {
 }
 
 impl Cylinder {
-    /// The cylinder standing on `base` (the centre of its bottom cap).
+    /// The closed cylinder standing on `base` (the centre of its bottom cap).
     pub fn new(base: Vec3, radius: f32, height: f32) -> Self {
         Self {
             base,
             radius,
             height,
+            caps: true,
         }
     }
 
-    /// Every place the ray's line meets the closed cylinder, as (t, part); at most four
-    /// candidates of which at most two are real for a convex solid, unordered.
+    /// The same cylinder, closed or open.
+    pub fn with_caps(self, caps: bool) -> Self {
+        Self { caps, ..self }
+    }
+
+    /// Every place the ray's line meets the cylinder, as (t, part); at most four
+    /// candidates of which at most two are real, unordered.
     #[inline]
     fn candidates(&self, ray: &Ray) -> [(f32, CylinderPart); 4] {
         let none = (f32::NAN, CylinderPart::Side);
@@ -66,7 +74,7 @@ impl Cylinder {
                 }
             }
         }
-        if ray.dir.y != 0.0 {
+        if self.caps && ray.dir.y != 0.0 {
             let r2 = self.radius * self.radius;
             for (slot, (y, part)) in [(y_lo, CylinderPart::Bottom), (y_hi, CylinderPart::Top)]
                 .into_iter()
@@ -97,18 +105,14 @@ impl Cylinder {
         t_min: f32,
         t_max: f32,
     ) -> Option<(f32, CylinderPart)> {
-        let mut best: Option<(f32, CylinderPart)> = None;
-        for (t, part) in self.candidates(ray) {
-            if t > t_min && t < t_max && best.is_none_or(|(bt, _)| t < bt) {
-                best = Some((t, part));
-            }
-        }
-        best
+        nearest_candidate(self.candidates(ray), t_min, t_max)
     }
 
     /// How many times the segment (0, t_max) crosses the surface.
     #[inline]
     pub fn crossings(&self, ray: &Ray, t_max: f32) -> u32 {
+        // A line crosses a closed cylinder at most twice (one through a rim may count a
+        // side and a cap both); an open tube's side alone, at most twice too.
         self.candidates(ray)
             .iter()
             .filter(|(t, _)| *t > 0.0 && *t < t_max)
@@ -173,6 +177,22 @@ impl Cylinder {
             max: self.base + Vec3::new(self.radius, self.height, self.radius),
         }
     }
+}
+
+/// The nearest of a cylinder's or cone's candidates (NaN for none) in (t_min, t_max).
+#[inline]
+pub(super) fn nearest_candidate(
+    candidates: [(f32, CylinderPart); 4],
+    t_min: f32,
+    t_max: f32,
+) -> Option<(f32, CylinderPart)> {
+    let mut best: Option<(f32, CylinderPart)> = None;
+    for (t, part) in candidates {
+        if t > t_min && t < t_max && best.is_none_or(|(bt, _)| t < bt) {
+            best = Some((t, part));
+        }
+    }
+    best
 }
 
 #[cfg(test)]
@@ -248,6 +268,22 @@ mod tests {
             )
             .is_none()
         );
+    }
+
+    #[test]
+    fn open_tube_lets_rays_through_its_ends_and_shows_its_inside() {
+        let c = cyl().with_caps(false);
+        let down = Ray::new(Vec3::new(0.5, 10.0, -10.0), -Vec3::Y);
+        assert!(c.intersect(&down, f32::INFINITY).is_none());
+        assert_eq!(c.crossings(&down, f32::INFINITY), 0);
+        // Down into the tube at a slant: the inside of the far wall.
+        let slant = Ray::new(Vec3::new(0.0, 3.0, -10.0), Vec3::new(1.0, -1.0, 0.0));
+        let (t, part) = c.intersect(&slant, f32::INFINITY).unwrap();
+        assert_eq!(part, CylinderPart::Side);
+        assert!((t - 2.0).abs() < 1e-6);
+        let (p, n, _) = c.surface(&slant, t, part);
+        assert!((p - Vec3A::new(2.0, 1.0, -10.0)).length() < 1e-5);
+        assert!(n.dot(slant.dir) > 0.0, "seen from inside");
     }
 
     #[test]

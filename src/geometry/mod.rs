@@ -2,19 +2,28 @@
 //! layer's job (accel/).
 
 mod aabb;
+mod cone;
+mod cuboid;
 mod cylinder;
+mod disc;
 mod mesh;
+mod polynomial;
 mod ray;
 mod shape;
 mod sphere;
+mod torus;
 mod transform;
 mod triangle;
 
 pub use aabb::Aabb;
+pub use cone::Cone;
+pub use cuboid::{Cuboid, CuboidFace};
 pub use cylinder::{Cylinder, CylinderPart};
+pub use disc::{Disc, picture_axes};
 pub use mesh::{Mesh, MeshError};
 pub use ray::{Ray, RayQuery};
 pub use shape::{HitDetail, Shape, ShapeHit, SurfacePoint};
 pub use sphere::Sphere;
+pub use torus::Torus;
 pub use transform::Transform;
 pub use triangle::{Triangle, TriangleHit};

@@ -1,9 +1,13 @@
 //! The closed set of primitive shapes, dispatched by `match` (no vtables on the hot path).
 
 use super::aabb::Aabb;
+use super::cone::Cone;
+use super::cuboid::{Cuboid, CuboidFace};
 use super::cylinder::{Cylinder, CylinderPart};
+use super::disc::Disc;
 use super::ray::RayQuery;
 use super::sphere::Sphere;
+use super::torus::Torus;
 use super::triangle::{Triangle, TriangleHit};
 use glam::Vec3A;
 
@@ -14,8 +18,16 @@ pub enum Shape {
     Sphere(Sphere),
     /// A triangle (polygons and tetrahedra are made of these).
     Triangle(Triangle),
-    /// A capped cylinder.
+    /// A cylinder, capped or open.
     Cylinder(Cylinder),
+    /// An axis-aligned solid box.
+    Cuboid(Cuboid),
+    /// A flat disc (a plane is one far wider than the scene).
+    Disc(Disc),
+    /// A cone or frustum, capped or open.
+    Cone(Cone),
+    /// A torus.
+    Torus(Torus),
 }
 
 /// What the intersection test found; enough to rebuild the surface point later, once, for
@@ -43,6 +55,20 @@ pub enum HitDetail {
         /// Which.
         part: CylinderPart,
     },
+    /// A box's face.
+    Cuboid {
+        /// Which.
+        face: CuboidFace,
+    },
+    /// A disc.
+    Disc,
+    /// A cone's side or cap.
+    Cone {
+        /// Which.
+        part: CylinderPart,
+    },
+    /// A torus.
+    Torus,
     /// Triangle `triangle` of a mesh, at barycentric weights `b`.
     Mesh {
         /// The triangle's index in the mesh.
@@ -53,11 +79,13 @@ pub enum HitDetail {
 }
 
 impl HitDetail {
-    /// Which part of the shape was hit: 0, or for a cylinder its side or a cap.
+    /// Which part of the shape was hit: 0, or for a cylinder or a cone its side or a cap,
+    /// for a box its face.
     #[inline]
     pub fn part(&self) -> u32 {
         match self {
-            HitDetail::Cylinder { part } => *part as u32,
+            HitDetail::Cylinder { part } | HitDetail::Cone { part } => *part as u32,
+            HitDetail::Cuboid { face } => face.axis as u32 * 2 + face.upper as u32,
             _ => 0,
         }
     }
@@ -104,6 +132,26 @@ impl Shape {
                         detail: HitDetail::Cylinder { part },
                     })
             }
+            Shape::Cuboid(b) => b
+                .intersect_after(q, t_min, t_max)
+                .map(|(t, face)| ShapeHit {
+                    t,
+                    detail: HitDetail::Cuboid { face },
+                }),
+            Shape::Disc(d) => d.intersect_after(&q.ray, t_min, t_max).map(|t| ShapeHit {
+                t,
+                detail: HitDetail::Disc,
+            }),
+            Shape::Cone(c) => c
+                .intersect_after(&q.ray, t_min, t_max)
+                .map(|(t, part)| ShapeHit {
+                    t,
+                    detail: HitDetail::Cone { part },
+                }),
+            Shape::Torus(tor) => tor.intersect_after(&q.ray, t_min, t_max).map(|t| ShapeHit {
+                t,
+                detail: HitDetail::Torus,
+            }),
         }
     }
 
@@ -114,22 +162,24 @@ impl Shape {
             Shape::Sphere(s) => s.crossings(&q.ray, t_max),
             Shape::Triangle(tri) => tri.intersect(q, t_max).is_some() as u32,
             Shape::Cylinder(c) => c.crossings(&q.ray, t_max),
+            Shape::Cuboid(b) => b.crossings(q, t_max),
+            Shape::Disc(d) => d.intersect_after(&q.ray, 0.0, t_max).is_some() as u32,
+            Shape::Cone(c) => c.crossings(&q.ray, t_max),
+            Shape::Torus(tor) => tor.crossings(&q.ray, t_max),
         }
     }
 
     /// The surface point of `hit`, found by `intersect` along `q`.
     #[inline]
     pub fn surface(&self, q: &RayQuery, hit: &ShapeHit) -> SurfacePoint {
+        let at = |(point, normal, error)| SurfacePoint {
+            point,
+            error,
+            normal,
+            shading: normal,
+        };
         match (self, hit.detail) {
-            (Shape::Sphere(s), _) => {
-                let (point, normal, error) = s.surface(&q.ray, hit.t);
-                SurfacePoint {
-                    point,
-                    error,
-                    normal,
-                    shading: normal,
-                }
-            }
+            (Shape::Sphere(s), _) => at(s.surface(&q.ray, hit.t)),
             (Shape::Triangle(tri), HitDetail::Triangle { b }) => {
                 let (point, error) = tri.surface(&TriangleHit { t: hit.t, b });
                 SurfacePoint {
@@ -140,14 +190,12 @@ impl Shape {
                 }
             }
             (Shape::Cylinder(c), HitDetail::Cylinder { part }) => {
-                let (point, normal, error) = c.surface(&q.ray, hit.t, part);
-                SurfacePoint {
-                    point,
-                    error,
-                    normal,
-                    shading: normal,
-                }
+                at(c.surface(&q.ray, hit.t, part))
             }
+            (Shape::Cuboid(b), HitDetail::Cuboid { face }) => at(b.surface(&q.ray, hit.t, face)),
+            (Shape::Disc(d), _) => at(d.surface(&q.ray, hit.t)),
+            (Shape::Cone(c), HitDetail::Cone { part }) => at(c.surface(&q.ray, hit.t, part)),
+            (Shape::Torus(tor), _) => at(tor.surface(&q.ray, hit.t)),
             (shape, detail) => unreachable!("hit {detail:?} does not belong to {shape:?}"),
         }
     }
@@ -159,6 +207,10 @@ impl Shape {
             (Shape::Sphere(_), _) => Sphere::uv(surface.normal),
             (Shape::Triangle(_), HitDetail::Triangle { b }) => (b[1], b[2]),
             (Shape::Cylinder(c), HitDetail::Cylinder { part }) => c.uv(surface.point, part),
+            (Shape::Cuboid(b), HitDetail::Cuboid { face }) => b.uv(surface.point, face),
+            (Shape::Disc(d), _) => d.uv(surface.point),
+            (Shape::Cone(c), HitDetail::Cone { part }) => c.uv(surface.point, part),
+            (Shape::Torus(tor), _) => tor.uv(surface.point),
             (shape, detail) => unreachable!("hit {detail:?} does not belong to {shape:?}"),
         }
     }
@@ -169,6 +221,21 @@ impl Shape {
             Shape::Sphere(s) => s.bounds(),
             Shape::Triangle(t) => t.bounds(),
             Shape::Cylinder(c) => c.bounds(),
+            Shape::Cuboid(b) => b.bounds(),
+            Shape::Disc(d) => d.bounds(),
+            Shape::Cone(c) => c.bounds(),
+            Shape::Torus(tor) => tor.bounds(),
+        }
+    }
+
+    /// Whether it is a closed convex solid: a line crosses it at most twice, and a ray
+    /// that starts inside meets it before anything beyond it.
+    pub fn is_convex_solid(&self) -> bool {
+        match self {
+            Shape::Sphere(_) | Shape::Cuboid(_) => true,
+            Shape::Cylinder(c) => c.caps,
+            Shape::Cone(c) => c.caps,
+            Shape::Triangle(_) | Shape::Disc(_) | Shape::Torus(_) => false,
         }
     }
 }

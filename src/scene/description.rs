@@ -4,7 +4,7 @@
 use crate::appearance::Material;
 use crate::appearance::{Background, Falloff, Light, LightKind};
 use crate::camera::Camera;
-use crate::geometry::{Aabb, Mesh, Transform};
+use crate::geometry::{Aabb, Disc, Mesh, Transform};
 use glam::{Affine3A, DVec3, Quat, Vec3};
 use std::sync::Arc;
 
@@ -78,7 +78,7 @@ pub enum ShapeDesc {
         /// Its radius.
         radius: f32,
     },
-    /// Along +y from the centre of its bottom cap, closed at both ends.
+    /// Along +y from the centre of its bottom cap, closed at both ends or open.
     Cylinder {
         /// The centre of its bottom cap.
         base: Vec3,
@@ -86,6 +86,53 @@ pub enum ShapeDesc {
         radius: f32,
         /// Its height.
         height: f32,
+        /// Whether both ends are closed.
+        caps: bool,
+    },
+    /// A solid axis-aligned box.
+    Cuboid {
+        /// Its corner with the smallest coordinates.
+        min: Vec3,
+        /// Its corner with the largest coordinates.
+        max: Vec3,
+    },
+    /// A flat disc.
+    Disc {
+        /// Its centre.
+        center: Vec3,
+        /// Its front's unit normal.
+        normal: Vec3,
+        /// Its radius.
+        radius: f32,
+    },
+    /// An infinite plane.
+    Plane {
+        /// A point on it.
+        point: Vec3,
+        /// Its front's unit normal.
+        normal: Vec3,
+    },
+    /// Along +y from the centre of its base: a cone, or a frustum with a top radius.
+    Cone {
+        /// The centre of its base.
+        base: Vec3,
+        /// The radius at its base.
+        radius: f32,
+        /// The radius at its top (0 for a point).
+        top_radius: f32,
+        /// Its height.
+        height: f32,
+        /// Whether its base and top are closed.
+        caps: bool,
+    },
+    /// A torus about an axis along +y.
+    Torus {
+        /// Its centre.
+        center: Vec3,
+        /// From the centre to the middle of the tube.
+        major_radius: f32,
+        /// The tube's radius.
+        minor_radius: f32,
     },
     /// A planar convex polygon, corners in order.
     Polygon {
@@ -113,7 +160,8 @@ pub enum ShapeDesc {
     /// A shape in its own space under a transform its own parameters cannot express (a
     /// sphere scaled unevenly into an ellipsoid, a tilted cylinder).
     Transformed {
-        /// The shape, in its own space: a sphere or a cylinder.
+        /// The shape, in its own space: any but a polygon, triangle, tetrahedron, plane or
+        /// mesh (which are placed point by point).
         shape: Box<ShapeDesc>,
         /// From the shape's space to the scene's.
         transform: Transform,
@@ -125,7 +173,10 @@ impl ShapeDesc {
     pub fn origin(&self) -> Vec3 {
         match self {
             ShapeDesc::Sphere { center, .. } => *center,
-            ShapeDesc::Cylinder { base, .. } => *base,
+            ShapeDesc::Cylinder { base, .. } | ShapeDesc::Cone { base, .. } => *base,
+            ShapeDesc::Cuboid { min, .. } => *min,
+            ShapeDesc::Disc { center, .. } | ShapeDesc::Torus { center, .. } => *center,
+            ShapeDesc::Plane { point, .. } => *point,
             ShapeDesc::Polygon { vertices } => vertices[0],
             ShapeDesc::Triangle { vertices } => vertices[0],
             ShapeDesc::Tetrahedron { vertices } => vertices.iter().sum::<Vec3>() / 4.0,
@@ -135,7 +186,8 @@ impl ShapeDesc {
         }
     }
 
-    /// The box around the shape, from its description alone (nothing is prepared).
+    /// The box around the shape, from its description alone (nothing is prepared). A plane,
+    /// having none, gives the box around its point.
     pub fn bounds(&self) -> Aabb {
         let around = |points: &[Vec3]| Aabb {
             min: points.iter().copied().fold(Vec3::INFINITY, Vec3::min),
@@ -150,10 +202,49 @@ impl ShapeDesc {
                 base,
                 radius,
                 height,
+                ..
             } => Aabb {
                 min: *base - Vec3::new(*radius, 0.0, *radius),
                 max: *base + Vec3::new(*radius, *height, *radius),
             },
+            ShapeDesc::Cuboid { min, max } => Aabb {
+                min: *min,
+                max: *max,
+            },
+            ShapeDesc::Disc {
+                center,
+                normal,
+                radius,
+            } => Disc::new(*center, *normal, *radius).bounds(),
+            ShapeDesc::Plane { point, .. } => around(&[*point]),
+            ShapeDesc::Cone {
+                base,
+                radius,
+                top_radius,
+                height,
+                ..
+            } => {
+                let r = radius.max(*top_radius);
+                Aabb {
+                    min: *base - Vec3::new(r, 0.0, r),
+                    max: *base + Vec3::new(r, *height, r),
+                }
+            }
+            ShapeDesc::Torus {
+                center,
+                major_radius,
+                minor_radius,
+            } => {
+                let reach = Vec3::new(
+                    major_radius + minor_radius,
+                    *minor_radius,
+                    major_radius + minor_radius,
+                );
+                Aabb {
+                    min: *center - reach,
+                    max: *center + reach,
+                }
+            }
             ShapeDesc::Polygon { vertices } => around(vertices),
             ShapeDesc::Triangle { vertices } => around(vertices),
             ShapeDesc::Tetrahedron { vertices } => around(vertices),
@@ -176,10 +267,51 @@ impl ShapeDesc {
                 base,
                 radius,
                 height,
+                caps,
             } => ShapeDesc::Cylinder {
                 base: p(*base),
                 radius: radius * scale,
                 height: height * scale,
+                caps: *caps,
+            },
+            ShapeDesc::Cuboid { min, max } => ShapeDesc::Cuboid {
+                min: p(*min),
+                max: p(*max),
+            },
+            ShapeDesc::Disc {
+                center,
+                normal,
+                radius,
+            } => ShapeDesc::Disc {
+                center: p(*center),
+                normal: *normal,
+                radius: radius * scale,
+            },
+            ShapeDesc::Plane { point, normal } => ShapeDesc::Plane {
+                point: p(*point),
+                normal: *normal,
+            },
+            ShapeDesc::Cone {
+                base,
+                radius,
+                top_radius,
+                height,
+                caps,
+            } => ShapeDesc::Cone {
+                base: p(*base),
+                radius: radius * scale,
+                top_radius: top_radius * scale,
+                height: height * scale,
+                caps: *caps,
+            },
+            ShapeDesc::Torus {
+                center,
+                major_radius,
+                minor_radius,
+            } => ShapeDesc::Torus {
+                center: p(*center),
+                major_radius: major_radius * scale,
+                minor_radius: minor_radius * scale,
             },
             ShapeDesc::Polygon { vertices } => ShapeDesc::Polygon {
                 vertices: vertices.iter().map(|&v| p(v)).collect(),
@@ -198,6 +330,37 @@ impl ShapeDesc {
                 shape: shape.clone(),
                 transform: moved(transform, scale, offset),
             },
+        }
+    }
+}
+
+impl ShapeDesc {
+    /// Whether a ray that leaves its outside cannot meet it again: a closed convex solid or
+    /// a flat convex shape (not a mesh, an open tube or cone, or a torus).
+    pub fn is_convex(&self) -> bool {
+        match self {
+            ShapeDesc::Cylinder { caps, .. } | ShapeDesc::Cone { caps, .. } => *caps,
+            ShapeDesc::Mesh { .. } | ShapeDesc::Torus { .. } => false,
+            ShapeDesc::Transformed { shape, .. } => shape.is_convex(),
+            ShapeDesc::Sphere { .. }
+            | ShapeDesc::Cuboid { .. }
+            | ShapeDesc::Disc { .. }
+            | ShapeDesc::Plane { .. }
+            | ShapeDesc::Polygon { .. }
+            | ShapeDesc::Triangle { .. }
+            | ShapeDesc::Tetrahedron { .. } => true,
+        }
+    }
+
+    /// Whether it has no inside, so both its sides face out.
+    pub fn is_flat(&self) -> bool {
+        match self {
+            ShapeDesc::Polygon { .. }
+            | ShapeDesc::Triangle { .. }
+            | ShapeDesc::Disc { .. }
+            | ShapeDesc::Plane { .. } => true,
+            ShapeDesc::Transformed { shape, .. } => shape.is_flat(),
+            _ => false,
         }
     }
 }

@@ -3,6 +3,7 @@
 
 mod meshes;
 mod placement;
+mod solids;
 
 use super::description::{RenderDefaults, Scene, SceneObject, ShapeDesc};
 use super::error::{SceneError, line_column};
@@ -49,6 +50,16 @@ struct SceneFile {
     tetrahedra: Vec<Spanned<TetrahedronDef>>,
     #[serde(default)]
     meshes: Vec<Spanned<MeshDef>>,
+    #[serde(default)]
+    boxes: Vec<Spanned<solids::BoxDef>>,
+    #[serde(default)]
+    discs: Vec<Spanned<solids::DiscDef>>,
+    #[serde(default)]
+    planes: Vec<Spanned<solids::PlaneDef>>,
+    #[serde(default)]
+    cones: Vec<Spanned<solids::ConeDef>>,
+    #[serde(default)]
+    tori: Vec<Spanned<solids::TorusDef>>,
 }
 
 #[derive(Deserialize)]
@@ -148,6 +159,7 @@ struct CylinderDef {
     base: P3,
     radius: f32,
     height: f32,
+    caps: Option<bool>,
     material: Option<String>,
     shadow: Option<bool>,
     translate: Option<P3>,
@@ -734,6 +746,7 @@ impl Validator<'_> {
                         base: relative_base,
                         radius: self.length(at, "radius", (d.radius as f64 * a) as f32)?,
                         height,
+                        caps: d.caps.unwrap_or(true),
                     };
                     match upright {
                         Some(_) => Ok(cylinder),
@@ -809,6 +822,27 @@ impl Validator<'_> {
                 },
             )?;
         }
+        macro_rules! solids {
+            ($list:expr, $kind:literal, $read:ident) => {
+                for (i, item) in $list.iter().enumerate() {
+                    let d = item.get_ref();
+                    add(
+                        $kind,
+                        i,
+                        item.span(),
+                        &d.name,
+                        &d.material,
+                        d.shadow,
+                        &|at| self.$read(at, d),
+                    )?;
+                }
+            };
+        }
+        solids!(file.boxes, "boxes", cuboid);
+        solids!(file.discs, "discs", disc);
+        solids!(file.planes, "planes", plane);
+        solids!(file.cones, "cones", cone);
+        solids!(file.tori, "tori", torus);
         let mut mesh_files = meshes::MeshFiles::default();
         for (i, m) in file.meshes.iter().enumerate() {
             let d = m.get_ref();

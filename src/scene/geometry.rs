@@ -4,7 +4,10 @@
 
 use super::description::{Scene, ShapeDesc};
 use crate::accel::{AccelOptions, Accelerator, Instance, Model, Primitive, Surface};
-use crate::geometry::{Cylinder, Mesh, Shape, Sphere, Triangle};
+use crate::geometry::{
+    Cone, Cuboid, Cylinder, Disc, Mesh, Shape, Sphere, Torus, Triangle, picture_axes,
+};
+use crate::limits;
 use glam::{Vec3, Vec3A};
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -53,6 +56,17 @@ impl PlanarUv {
         }
     }
 
+    /// Texture coordinates over a plane through `point` facing `normal`: one repeat of a
+    /// picture per unit of length, upright as its front is seen (as a disc's).
+    fn unit(point: Vec3, normal: Vec3) -> Self {
+        let (right, up) = picture_axes(normal);
+        Self {
+            origin: point.into(),
+            u_axis: right.into(),
+            v_axis: up.into(),
+        }
+    }
+
     /// (u, v) of point `p` in the polygon's plane: u along the first edge, v from the far
     /// side down to it, so that a polygon whose corners run counter-clockwise from its
     /// bottom-left (as its front is seen) shows a picture upright (an image's v runs down).
@@ -61,6 +75,74 @@ impl PlanarUv {
         let d = p - self.origin;
         (d.dot(self.u_axis), 1.0 - d.dot(self.v_axis))
     }
+}
+
+/// The one shape a described shape is, by its own parameters (in the scene's space, or in
+/// its own under a transform).
+fn solid_shape(shape: &ShapeDesc) -> Shape {
+    match *shape {
+        ShapeDesc::Sphere { center, radius } => Shape::Sphere(Sphere::new(center, radius)),
+        ShapeDesc::Cylinder {
+            base,
+            radius,
+            height,
+            caps,
+        } => Shape::Cylinder(Cylinder::new(base, radius, height).with_caps(caps)),
+        ShapeDesc::Cuboid { min, max } => Shape::Cuboid(Cuboid::new(min, max)),
+        ShapeDesc::Disc {
+            center,
+            normal,
+            radius,
+        } => Shape::Disc(Disc::new(center, normal, radius)),
+        ShapeDesc::Cone {
+            base,
+            radius,
+            top_radius,
+            height,
+            caps,
+        } => Shape::Cone(Cone {
+            base,
+            radius,
+            top_radius,
+            height,
+            caps,
+        }),
+        ShapeDesc::Torus {
+            center,
+            major_radius,
+            minor_radius,
+        } => Shape::Torus(Torus {
+            center,
+            major_radius,
+            minor_radius,
+        }),
+        ref other => unreachable!("not one shape by its own parameters: {other:?}"),
+    }
+}
+
+/// The radius of the disc that stands for an infinite plane: `limits::PLANE_REACH` times
+/// the scene's extent from the eye (its objects', its lights' and its planes' distances), so
+/// that the image does not change with the scene's scale.
+fn plane_reach(scene: &Scene) -> f32 {
+    let mut extent: f32 = 0.0;
+    for object in &scene.objects {
+        let d = match &object.shape {
+            ShapeDesc::Plane { point, normal } => point.dot(*normal).abs(),
+            shape => {
+                let b = shape.bounds();
+                b.min.abs().max(b.max.abs()).max_element()
+            }
+        };
+        extent = extent.max(d);
+    }
+    for light in &scene.lights {
+        if let Some(p) = light.position() {
+            extent = extent.max(p.abs().max_element());
+        }
+    }
+    // Only planes through the eye: seen edge on, any width will do.
+    let extent = if extent > 0.0 { extent } else { 1.0 };
+    (extent * limits::PLANE_REACH).min(f32::MAX.sqrt() * 0.5)
 }
 
 /// The primitives of a scene's objects, the acceleration layer over them, and each object's
@@ -78,6 +160,7 @@ impl Geometry {
         let mut objects = Vec::with_capacity(scene.objects.len());
         // One model per mesh, however many objects place it.
         let mut models: HashMap<*const Mesh, Arc<Model>> = HashMap::new();
+        let plane_reach = plane_reach(scene);
         for (index, object) in scene.objects.iter().enumerate() {
             let id = index as u32;
             let mut planar_uv = None;
@@ -89,14 +172,20 @@ impl Geometry {
             };
             let mut push = |shape| push_surface(Surface::Shape(shape));
             match &object.shape {
-                ShapeDesc::Sphere { center, radius } => {
-                    push(Shape::Sphere(Sphere::new(*center, *radius)))
+                ShapeDesc::Plane { point, normal } => {
+                    // Seen from the eye (at the frame's origin), a disc this wide is a plane:
+                    // its rim lies below the horizon by less than a pixel.
+                    let foot = *normal * point.dot(*normal);
+                    let uv = PlanarUv::unit(*point, *normal);
+                    planar_uv = Some(uv);
+                    push(Shape::Disc(Disc::new(foot, *normal, plane_reach)))
                 }
-                ShapeDesc::Cylinder {
-                    base,
-                    radius,
-                    height,
-                } => push(Shape::Cylinder(Cylinder::new(*base, *radius, *height))),
+                shape @ (ShapeDesc::Sphere { .. }
+                | ShapeDesc::Cylinder { .. }
+                | ShapeDesc::Cuboid { .. }
+                | ShapeDesc::Disc { .. }
+                | ShapeDesc::Cone { .. }
+                | ShapeDesc::Torus { .. }) => push(solid_shape(shape)),
                 ShapeDesc::Triangle {
                     vertices: [a, b, c],
                 } => push(Shape::Triangle(
@@ -142,19 +231,7 @@ impl Geometry {
                     ))));
                 }
                 ShapeDesc::Transformed { shape, transform } => {
-                    let model = match **shape {
-                        ShapeDesc::Sphere { center, radius } => {
-                            Shape::Sphere(Sphere::new(center, radius))
-                        }
-                        ShapeDesc::Cylinder {
-                            base,
-                            radius,
-                            height,
-                        } => Shape::Cylinder(Cylinder::new(base, radius, height)),
-                        ref other => {
-                            unreachable!("only spheres and cylinders are transformed: {other:?}")
-                        }
-                    };
+                    let model = solid_shape(shape);
                     push_surface(Surface::Instance(Arc::new(Instance::new(
                         Arc::new(Model::Shape(model)),
                         *transform,
@@ -165,11 +242,8 @@ impl Geometry {
                 name: object.name.clone(),
                 origin: object.shape.origin().into(),
                 planar_uv,
-                flat: matches!(
-                    object.shape,
-                    ShapeDesc::Polygon { .. } | ShapeDesc::Triangle { .. }
-                ),
-                convex: !matches!(object.shape, ShapeDesc::Mesh { .. }),
+                flat: object.shape.is_flat(),
+                convex: object.shape.is_convex(),
             });
         }
         let lights: Vec<Option<Vec3>> = scene.lights.iter().map(|l| l.position()).collect();

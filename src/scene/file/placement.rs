@@ -14,8 +14,6 @@ use glam::{Affine3A, DMat3, DVec3, Mat3A, Vec3A};
 pub(super) struct Placement {
     scale: DVec3,
     rotation: DMat3,
-    /// Whether the rotation keeps the y axis where it is (a turn about y only).
-    keeps_y: bool,
     translate: DVec3,
 }
 
@@ -23,7 +21,6 @@ impl Placement {
     pub(super) const IDENTITY: Placement = Placement {
         scale: DVec3::ONE,
         rotation: DMat3::IDENTITY,
-        keeps_y: true,
         translate: DVec3::ZERO,
     };
 
@@ -39,15 +36,28 @@ impl Placement {
         (self.linear() * DVec3::from(p) + self.translate).to_array()
     }
 
-    /// The factor of a scale that is the same on every axis.
+    /// For a shape its own parameters can place (no turn, which would turn its texture,
+    /// and the same scale on every axis): the factor.
     pub(super) fn uniform_scale(&self) -> Option<f64> {
-        (self.scale.x == self.scale.y && self.scale.y == self.scale.z).then_some(self.scale.x)
+        (self.keeps_axes() && self.scale.x == self.scale.y && self.scale.y == self.scale.z)
+            .then_some(self.scale.x)
     }
 
-    /// For an upright cylinder that stays upright (a turn about y at most, the same scale
-    /// across it): the factors of its radius and its height.
+    /// Whether the placement keeps the axes' directions (no turn), so a box stays
+    /// axis-aligned.
+    pub(super) fn keeps_axes(&self) -> bool {
+        self.rotation == DMat3::IDENTITY
+    }
+
+    /// The map of normals: the inverse transpose of the linear part.
+    pub(super) fn normal_matrix(&self) -> DMat3 {
+        self.linear().inverse().transpose()
+    }
+
+    /// For an upright shape (a cylinder, a cone) that stays upright and round (no turn, the
+    /// same scale across it): the factors of its radius and its height.
     pub(super) fn upright_scale(&self) -> Option<(f64, f64)> {
-        (self.keeps_y && self.scale.x == self.scale.z).then_some((self.scale.x, self.scale.y))
+        (self.keeps_axes() && self.scale.x == self.scale.z).then_some((self.scale.x, self.scale.y))
     }
 
     /// The transform of a shape given relative to the scene's origin `origin` (as every
@@ -106,7 +116,6 @@ impl Validator<'_> {
             let [x, y, z] = turned.map(f64::to_radians);
             out.rotation =
                 DMat3::from_rotation_z(z) * DMat3::from_rotation_y(y) * DMat3::from_rotation_x(x);
-            out.keeps_y = turned[0] == 0.0 && turned[2] == 0.0;
         }
         if let Some(value) = scale {
             let factors: Option<[f64; 3]> = match value {
