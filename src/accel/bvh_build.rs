@@ -1,7 +1,13 @@
 //! The binned surface area heuristic build (Wald 2007) of a binary hierarchy, which
 //! `bvh.rs` then collapses into four-wide nodes for traversal.
+//!
+//! Each node makes three passes over its primitives: their boxes and centroids, the bins
+//! of all three axes at once, and the partition. A subtree of m primitives owns 2m − 1 node
+//! slots laid out in advance, so the two halves of a split are built on two threads without
+//! sharing anything; the tree is the same whichever thread builds what.
 
 use crate::geometry::Aabb;
+use glam::Vec3A;
 
 /// Interior nodes have `count == 0` and their children at `first` and `first + 1`; leaves
 /// hold primitives `first .. first + count` of the reordered primitive array.
@@ -12,7 +18,9 @@ pub struct BinaryNode {
     pub count: u32,
 }
 
-/// A binary tree in one array; the root is node 0.
+/// A binary tree in one array; the root is node 0. Slots no node needed (a subtree that
+/// ends in leaves of several primitives uses fewer than it owns) are left empty and
+/// unreachable.
 #[derive(Clone, Debug, Default)]
 pub struct BinaryBvh {
     pub nodes: Vec<BinaryNode>,
@@ -25,12 +33,75 @@ const TRAVERSAL_COST: f32 = 1.0;
 /// Leaves deeper than this are not split further, however large: it bounds the traversal
 /// stack (bvh.rs), and 2^32 leaves are more than any scene has.
 pub const MAX_DEPTH: usize = 32;
+/// Subtrees of fewer primitives are built on the thread that split them: below this, the
+/// cost of handing work to another thread outweighs the work.
+const PARALLEL_MIN: usize = 8192;
 
+/// A primitive's box in SIMD lanes (the same values as its `Aabb`, so the tree is the same
+/// as one built from the boxes themselves). Its index travels in an array of its own, so
+/// the passes that only read boxes stream a third less memory.
 struct BuildItem {
-    bounds: Aabb,
-    centroid: glam::Vec3,
-    index: u32,
+    min: Vec3A,
+    max: Vec3A,
 }
+
+impl BuildItem {
+    #[inline(always)]
+    fn centroid(&self) -> Vec3A {
+        (self.min + self.max) * 0.5
+    }
+}
+
+/// A box in SIMD lanes while it is grown.
+#[derive(Clone, Copy)]
+struct Bounds {
+    min: Vec3A,
+    max: Vec3A,
+}
+
+impl Bounds {
+    const EMPTY: Bounds = Bounds {
+        min: Vec3A::splat(f32::INFINITY),
+        max: Vec3A::splat(f32::NEG_INFINITY),
+    };
+
+    #[inline(always)]
+    fn union(self, it: &BuildItem) -> Bounds {
+        Bounds {
+            min: self.min.min(it.min),
+            max: self.max.max(it.max),
+        }
+    }
+
+    #[inline(always)]
+    fn merge(self, other: Bounds) -> Bounds {
+        Bounds {
+            min: self.min.min(other.min),
+            max: self.max.max(other.max),
+        }
+    }
+
+    #[inline(always)]
+    fn grow(self, p: Vec3A) -> Bounds {
+        Bounds {
+            min: self.min.min(p),
+            max: self.max.max(p),
+        }
+    }
+
+    fn aabb(self) -> Aabb {
+        Aabb {
+            min: self.min.into(),
+            max: self.max.into(),
+        }
+    }
+}
+
+const UNUSED: BinaryNode = BinaryNode {
+    bounds: Aabb::EMPTY,
+    first: 0,
+    count: 0,
+};
 
 impl BinaryBvh {
     /// Builds over primitives with the given bounds; returns the tree and the order in
@@ -38,127 +109,306 @@ impl BinaryBvh {
     pub fn build(bounds: &[Aabb]) -> (BinaryBvh, Vec<u32>) {
         let mut items: Vec<BuildItem> = bounds
             .iter()
-            .enumerate()
-            .map(|(i, b)| BuildItem {
-                bounds: *b,
-                centroid: b.centroid(),
-                index: i as u32,
+            .map(|b| BuildItem {
+                min: b.min.into(),
+                max: b.max.into(),
             })
             .collect();
-        let mut bvh = BinaryBvh {
-            nodes: Vec::with_capacity(2 * bounds.len().max(1)),
-        };
+        let mut order: Vec<u32> = (0..bounds.len() as u32).collect();
         if items.is_empty() {
-            return (bvh, Vec::new());
+            return (BinaryBvh::default(), Vec::new());
         }
-        let root_bounds = items.iter().fold(Aabb::EMPTY, |b, it| b.union(it.bounds));
-        bvh.nodes.push(BinaryNode {
-            bounds: root_bounds,
-            first: 0,
-            count: items.len() as u32,
-        });
-        bvh.subdivide(0, &mut items, 0, 1);
-        let order = items.iter().map(|it| it.index).collect();
-        (bvh, order)
-    }
-
-    fn subdivide(&mut self, node: usize, items: &mut [BuildItem], offset: usize, depth: usize) {
-        let n = items.len();
-        // A leaf at the depth limit, however large, keeps traversal within its fixed stack.
-        if depth >= MAX_DEPTH {
-            return;
-        }
-        let bounds = self.nodes[node].bounds;
-        let leaf_cost = n as f32;
-        if n <= 1 {
-            return;
-        }
-        let centroid_bounds = items.iter().fold(Aabb::EMPTY, |b, it| b.grow(it.centroid));
-        let extent = centroid_bounds.max - centroid_bounds.min;
-        let mut best: Option<(f32, usize, usize)> = None; // (cost, axis, split bin)
-        for axis in 0..3 {
-            if extent[axis] <= 0.0 {
-                continue;
-            }
-            let scale = BINS as f32 / extent[axis];
-            let bin_of = |it: &BuildItem| {
-                (((it.centroid[axis] - centroid_bounds.min[axis]) * scale) as usize).min(BINS - 1)
-            };
-            let mut bin_bounds = [Aabb::EMPTY; BINS];
-            let mut bin_count = [0usize; BINS];
-            for it in items.iter() {
-                let b = bin_of(it);
-                bin_bounds[b] = bin_bounds[b].union(it.bounds);
-                bin_count[b] += 1;
-            }
-            // Sweep from the right to know the cost of every right-hand side.
-            let mut right_area = [0.0f32; BINS];
-            let mut right_count = [0usize; BINS];
-            let (mut acc, mut cnt) = (Aabb::EMPTY, 0);
-            for b in (1..BINS).rev() {
-                acc = acc.union(bin_bounds[b]);
-                cnt += bin_count[b];
-                right_area[b] = acc.half_area();
-                right_count[b] = cnt;
-            }
-            let (mut acc, mut cnt) = (Aabb::EMPTY, 0);
-            for split in 1..BINS {
-                acc = acc.union(bin_bounds[split - 1]);
-                cnt += bin_count[split - 1];
-                if cnt == 0 || right_count[split] == 0 {
-                    continue;
-                }
-                let cost = TRAVERSAL_COST
-                    + (acc.half_area() * cnt as f32
-                        + right_area[split] * right_count[split] as f32)
-                        / bounds.half_area().max(f32::MIN_POSITIVE);
-                if best.is_none_or(|(c, _, _)| cost < c) {
-                    best = Some((cost, axis, split));
-                }
-            }
-        }
-        let mid = match best {
-            Some((cost, axis, split)) if cost < leaf_cost || n > MAX_LEAF => {
-                let scale = BINS as f32 / extent[axis];
-                let min = centroid_bounds.min[axis];
-                partition(items, |it| {
-                    ((((it.centroid[axis] - min) * scale) as usize).min(BINS - 1)) < split
-                })
-            }
-            Some(_) => return,
-            // All centroids coincide: split in the middle if the leaf would be too large.
-            None if n > MAX_LEAF => n / 2,
-            None => return,
-        };
-        let (left_items, right_items) = items.split_at_mut(mid);
-        let left = self.nodes.len();
-        for part in [&*left_items, &*right_items] {
-            let b = part.iter().fold(Aabb::EMPTY, |b, it| b.union(it.bounds));
-            self.nodes.push(BinaryNode {
-                bounds: b,
-                first: 0,
-                count: 0,
-            });
-        }
-        self.nodes[left].first = offset as u32;
-        self.nodes[left].count = left_items.len() as u32;
-        self.nodes[left + 1].first = (offset + mid) as u32;
-        self.nodes[left + 1].count = right_items.len() as u32;
-        self.nodes[node].first = left as u32;
-        self.nodes[node].count = 0;
-        self.subdivide(left, left_items, offset, depth + 1);
-        self.subdivide(left + 1, right_items, offset + mid, depth + 1);
+        let mut nodes = vec![UNUSED; 2 * items.len() - 1];
+        let (root, below) = nodes.split_at_mut(1);
+        let around = Around::of(&items);
+        root[0] = build_node(&mut items, &mut order, around, below, 1, 0, 0);
+        (BinaryBvh { nodes }, order)
     }
 }
 
-/// Moves the items for which `left` holds to the front; returns how many there are.
-fn partition(items: &mut [BuildItem], left: impl Fn(&BuildItem) -> bool) -> usize {
-    let mut i = 0;
-    for j in 0..items.len() {
-        if left(&items[j]) {
-            items.swap(i, j);
-            i += 1;
+/// The box around some items and the box around their centroids.
+#[derive(Clone, Copy)]
+struct Around {
+    boxes: Bounds,
+    centroids: Bounds,
+}
+
+impl Around {
+    const EMPTY: Around = Around {
+        boxes: Bounds::EMPTY,
+        centroids: Bounds::EMPTY,
+    };
+
+    #[inline(always)]
+    fn add(self, it: &BuildItem, centroid: Vec3A) -> Around {
+        Around {
+            boxes: self.boxes.union(it),
+            centroids: self.centroids.grow(centroid),
         }
     }
-    i
+
+    fn of(items: &[BuildItem]) -> Around {
+        items
+            .iter()
+            .fold(Around::EMPTY, |a, it| a.add(it, it.centroid()))
+    }
+}
+
+/// The node over `items` (primitives `offset ..` of the final order; `around` is their
+/// boxes' box and their centroids'), with its descendants written into `below`, whose
+/// first slot is node `base`: the two children, then the left child's descendants, then
+/// the right child's.
+fn build_node(
+    items: &mut [BuildItem],
+    order: &mut [u32],
+    around: Around,
+    below: &mut [BinaryNode],
+    base: usize,
+    offset: usize,
+    depth: usize,
+) -> BinaryNode {
+    let n = items.len();
+    let (bounds, centroid_bounds) = (around.boxes.aabb(), around.centroids.aabb());
+    let leaf = BinaryNode {
+        bounds,
+        first: offset as u32,
+        count: n as u32,
+    };
+    // A leaf at the depth limit, however large, keeps traversal within its fixed stack.
+    if depth >= MAX_DEPTH || n <= 1 {
+        return leaf;
+    }
+    let extent = centroid_bounds.max - centroid_bounds.min;
+    let (mid, left_around, right_around) = match best_split(items, &bounds, &centroid_bounds) {
+        Some((cost, axis, split)) if cost < n as f32 || n > MAX_LEAF => {
+            let scale = BINS as f32 / extent[axis];
+            let min = centroid_bounds.min[axis];
+            partition(items, order, |c| {
+                ((((c[axis] - min) * scale) as usize).min(BINS - 1)) < split
+            })
+        }
+        Some(_) => return leaf,
+        // All centroids coincide: split in the middle if the leaf would be too large.
+        None if n > MAX_LEAF => {
+            let mid = n / 2;
+            (mid, Around::of(&items[..mid]), Around::of(&items[mid..]))
+        }
+        None => return leaf,
+    };
+    let (left_items, right_items) = items.split_at_mut(mid);
+    let (left_order, right_order) = order.split_at_mut(mid);
+    let (pair, rest) = below.split_at_mut(2);
+    let (left_below, right_below) = rest.split_at_mut(2 * mid - 2);
+    let left_base = base + 2;
+    let right_base = left_base + left_below.len();
+    let left = |items: &mut [BuildItem], order: &mut [u32], below: &mut [BinaryNode]| {
+        build_node(
+            items,
+            order,
+            left_around,
+            below,
+            left_base,
+            offset,
+            depth + 1,
+        )
+    };
+    let right = |items: &mut [BuildItem], order: &mut [u32], below: &mut [BinaryNode]| {
+        let offset = offset + mid;
+        build_node(
+            items,
+            order,
+            right_around,
+            below,
+            right_base,
+            offset,
+            depth + 1,
+        )
+    };
+    let (l, r) = if n >= PARALLEL_MIN {
+        rayon::join(
+            || left(left_items, left_order, left_below),
+            || right(right_items, right_order, right_below),
+        )
+    } else {
+        (
+            left(left_items, left_order, left_below),
+            right(right_items, right_order, right_below),
+        )
+    };
+    pair[0] = l;
+    pair[1] = r;
+    BinaryNode {
+        bounds,
+        first: base as u32,
+        count: 0,
+    }
+}
+
+/// The cheapest split by the SAH among every axis's bin boundaries, as (cost, axis, the
+/// first bin on the right); None when all centroids coincide.
+fn best_split(
+    items: &[BuildItem],
+    bounds: &Aabb,
+    centroid_bounds: &Aabb,
+) -> Option<(f32, usize, usize)> {
+    let extent = centroid_bounds.max - centroid_bounds.min;
+    let extent_a = Vec3A::from(extent);
+    let scale = Vec3A::select(
+        extent_a.cmpgt(Vec3A::ZERO),
+        Vec3A::splat(BINS as f32) / extent_a,
+        Vec3A::ZERO,
+    );
+    let low = Vec3A::from(centroid_bounds.min);
+    let mut bins = [[Bounds::EMPTY; BINS]; 3];
+    let mut bin_count = [[0usize; BINS]; 3];
+    // One pass bins every axis.
+    for it in items {
+        let b = ((it.centroid() - low) * scale)
+            .as_uvec3()
+            .min(glam::UVec3::splat(BINS as u32 - 1));
+        for axis in 0..3 {
+            let b = b[axis] as usize;
+            bins[axis][b] = bins[axis][b].union(it);
+            bin_count[axis][b] += 1;
+        }
+    }
+    let mut best: Option<(f32, usize, usize)> = None;
+    let parent_area = bounds.half_area().max(f32::MIN_POSITIVE);
+    for axis in 0..3 {
+        if extent[axis] <= 0.0 {
+            continue;
+        }
+        let (bins, counts) = (&bins[axis], &bin_count[axis]);
+        // Only boundaries just past a non-empty bin can be best: past an empty one, both
+        // sides hold what they held one boundary before, at the same cost, and the first
+        // of equal costs wins. A small node has few non-empty bins, so this is most of
+        // the work saved where most nodes are.
+        let mut full = [0usize; BINS];
+        let mut k = 0;
+        for (b, &count) in counts.iter().enumerate() {
+            if count > 0 {
+                full[k] = b;
+                k += 1;
+            }
+        }
+        // Sweep from the right to know the cost of every right-hand side.
+        let mut right_area = [0.0f32; BINS];
+        let mut right_count = [0usize; BINS];
+        let (mut acc, mut cnt) = (Bounds::EMPTY, 0);
+        for j in (1..k).rev() {
+            acc = acc.merge(bins[full[j]]);
+            cnt += counts[full[j]];
+            right_area[j] = acc.aabb().half_area();
+            right_count[j] = cnt;
+        }
+        let (mut acc, mut cnt) = (Bounds::EMPTY, 0);
+        for j in 1..k {
+            acc = acc.merge(bins[full[j - 1]]);
+            cnt += counts[full[j - 1]];
+            let cost = TRAVERSAL_COST
+                + (acc.aabb().half_area() * cnt as f32 + right_area[j] * right_count[j] as f32)
+                    / parent_area;
+            if best.is_none_or(|(c, _, _)| cost < c) {
+                best = Some((cost, axis, full[j - 1] + 1));
+            }
+        }
+    }
+    best
+}
+
+/// Moves the items whose centroid `left` accepts to the front; returns how many there
+/// are, and what each side's items are around (gathered here, in the pass that moves them,
+/// rather than in a pass of their own).
+fn partition(
+    items: &mut [BuildItem],
+    order: &mut [u32],
+    left: impl Fn(Vec3A) -> bool,
+) -> (usize, Around, Around) {
+    let (mut l, mut r) = (Around::EMPTY, Around::EMPTY);
+    let mut i = 0;
+    for j in 0..items.len() {
+        let c = items[j].centroid();
+        if left(c) {
+            l = l.add(&items[j], c);
+            items.swap(i, j);
+            order.swap(i, j);
+            i += 1;
+        } else {
+            r = r.add(&items[j], c);
+        }
+    }
+    (i, l, r)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec3;
+
+    /// Boxes along a diagonal, some coinciding, of varied sizes.
+    fn boxes(n: usize) -> Vec<Aabb> {
+        (0..n)
+            .map(|i| {
+                let c = Vec3::new(
+                    (i % 97) as f32,
+                    (i % 13) as f32 * 0.5,
+                    (i / 7) as f32 * 0.25,
+                );
+                let r = Vec3::splat(0.1 + (i % 5) as f32 * 0.05);
+                Aabb {
+                    min: c - r,
+                    max: c + r,
+                }
+            })
+            .collect()
+    }
+
+    /// Every primitive is in exactly one leaf, every leaf's box holds its primitives' and
+    /// every interior node's box its children's.
+    fn check(bounds: &[Aabb], bvh: &BinaryBvh, order: &[u32], node: usize, seen: &mut [bool]) {
+        let n = bvh.nodes[node];
+        if n.count > 0 {
+            for &p in &order[n.first as usize..(n.first + n.count) as usize] {
+                assert!(!seen[p as usize], "primitive {p} twice");
+                seen[p as usize] = true;
+                let b = bounds[p as usize];
+                assert!(n.bounds.min.cmple(b.min).all() && n.bounds.max.cmpge(b.max).all());
+            }
+        } else {
+            for child in [n.first as usize, n.first as usize + 1] {
+                let c = bvh.nodes[child].bounds;
+                assert!(n.bounds.min.cmple(c.min).all() && n.bounds.max.cmpge(c.max).all());
+                check(bounds, bvh, order, child, seen);
+            }
+        }
+    }
+
+    #[test]
+    fn every_primitive_lands_in_one_leaf_serial_and_parallel() {
+        // Below and far above the size at which subtrees go to other threads.
+        for n in [1, 2, 9, 100, 3 * PARALLEL_MIN] {
+            let bounds = boxes(n);
+            let (bvh, order) = BinaryBvh::build(&bounds);
+            assert_eq!(order.len(), n);
+            let mut seen = vec![false; n];
+            check(&bounds, &bvh, &order, 0, &mut seen);
+            assert!(seen.iter().all(|&s| s), "n = {n}");
+        }
+    }
+
+    #[test]
+    fn the_tree_does_not_depend_on_the_threads() {
+        let bounds = boxes(4 * PARALLEL_MIN);
+        let (a, order_a) = BinaryBvh::build(&bounds);
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .build()
+            .unwrap();
+        let (b, order_b) = pool.install(|| BinaryBvh::build(&bounds));
+        assert_eq!(order_a, order_b);
+        assert_eq!(a.nodes.len(), b.nodes.len());
+        for (x, y) in a.nodes.iter().zip(&b.nodes) {
+            assert_eq!((x.bounds, x.first, x.count), (y.bounds, y.first, y.count));
+        }
+    }
 }

@@ -118,8 +118,13 @@ pub fn watertight(p: &[Vec3A; 3], q: &RayQuery, t_min: f32, t_max: f32) -> Optio
     let max_x = largest_magnitude(ax, bx, cx);
     let max_y = largest_magnitude(ay, by, cy);
     let max_z = largest_magnitude(az, bz, cz);
-    let delta_x = gamma(5) * (max_x + max_z);
-    let delta_y = gamma(5) * (max_y + max_z);
+    // x and y were sheared by z before z was scaled by 1/d_z: their rounding grows with
+    // z in the scene's units. (pbrt takes the scaled z, the same for a unit direction, but
+    // far too large for the short directions of rays taken into a large instance's space,
+    // where it rejected real hits.)
+    let max_z_unscaled = largest_magnitude(a_z, b_z, c_z);
+    let delta_x = gamma(5) * (max_x + max_z_unscaled);
+    let delta_y = gamma(5) * (max_y + max_z_unscaled);
     let delta_z = gamma(3) * max_z;
     let delta_e = 2.0 * (gamma(2) * max_x * max_y + delta_y * max_x + delta_x * max_y);
     let max_e = largest_magnitude(u, v, w);
@@ -170,6 +175,28 @@ mod tests {
 
     fn query(origin: Vec3, dir: Vec3) -> RayQuery {
         RayQuery::new(Ray::new(origin, dir))
+    }
+
+    /// A ray's direction may be far from unit length (a ray taken into the space of an
+    /// instance scaled by 1000 is 1000 times shorter there): what it hits, and where,
+    /// must not depend on that.
+    #[test]
+    fn hits_do_not_depend_on_the_directions_length() {
+        let t = Triangle::new(
+            Vec3::new(0.0, 0.0, 0.0),
+            Vec3::new(0.1, 0.0, 0.0),
+            Vec3::new(0.0, 0.1, 0.0),
+        )
+        .unwrap();
+        let origin = Vec3::new(0.02, 0.03, 67.0);
+        for scale in [1e-6, 1e-3, 1.0, 1e3, 1e6] {
+            let q = query(origin, Vec3::new(0.0001, 0.0002, -1.0) * scale);
+            let h = t
+                .intersect(&q, f32::INFINITY)
+                .unwrap_or_else(|| panic!("{scale}"));
+            let t_unit = 67.0 / scale;
+            assert!((h.t - t_unit).abs() < 1e-5 * t_unit, "{scale}: {}", h.t);
+        }
     }
 
     #[test]

@@ -50,10 +50,22 @@ struct PartBuilder {
     triangles: Vec<[Corner; 3]>,
 }
 
+/// Text below this size is read in one piece; larger text in pieces read in parallel, each
+/// at least this large (smaller pieces would cost more to hand out than to read).
+const PARALLEL_PIECE_BYTES: usize = 1 << 20;
+
 /// Reads OBJ text. At most `max_triangles` triangles are accepted (a polygon of n corners
 /// makes n − 2); `smooth` asks for vertex normals where the file has none.
+///
+/// Large text is cut at line ends into pieces whose numbers are read in parallel; the
+/// pieces are then joined in order, resolving face corners against the counts defined so
+/// far and reporting the first problem in the file's order, as a reading from start to end
+/// would.
 pub fn parse_obj(text: &str, max_triangles: usize, smooth: bool) -> Result<ObjFile, LineError> {
-    let mut positions: Vec<Vec3> = Vec::new();
+    use rayon::prelude::*;
+    let pieces: Vec<Piece> = cut_at_lines(text).into_par_iter().map(read_piece).collect();
+    let mut positions: Vec<Vec3> =
+        Vec::with_capacity(pieces.iter().map(|p| p.positions.len()).sum());
     let mut uvs: Vec<Vec2> = Vec::new();
     let mut normals: Vec<Vec3> = Vec::new();
     let mut parts: Vec<PartBuilder> = Vec::new();
@@ -61,111 +73,76 @@ pub fn parse_obj(text: &str, max_triangles: usize, smooth: bool) -> Result<ObjFi
     let mut libraries = Vec::new();
     let mut triangle_count = 0usize;
     let mut corners: Vec<Corner> = Vec::new();
-    for (line, content, keyword, words) in statements(text) {
-        let fail = |message: String| LineError { line, message };
-        match keyword {
-            "v" => {
-                // x y z, an optional w, or (a common extension) a colour r g b.
-                let n = numbers::<6>(words, "v", line)?;
-                match n.len {
-                    3 | 6 => {}
-                    4 => {
-                        if n.values[3] == 0.0 {
-                            return Err(fail("`v` has a weight w of 0".into()));
-                        }
+    let mut lines_before = 0;
+    for piece in pieces {
+        let before = [positions.len(), uvs.len(), normals.len()];
+        let mut first_corner = 0;
+        for statement in &piece.statements {
+            match *statement {
+                Statement::Face { line, end, counts } => {
+                    let line = lines_before + line;
+                    let fail = |message: String| LineError { line, message };
+                    let so_far: [usize; 3] =
+                        std::array::from_fn(|k| before[k] + counts[k] as usize);
+                    corners.clear();
+                    for raw in &piece.corners[first_corner..end as usize] {
+                        corners.push(resolve(raw, so_far, line)?);
                     }
-                    k => {
+                    first_corner = end as usize;
+                    triangle_count += corners.len() - 2;
+                    if triangle_count > max_triangles {
                         return Err(fail(format!(
-                            "`v` needs x y z (and an optional w), got {k} number{}",
-                            if k == 1 { "" } else { "s" }
+                            "the mesh has more than the {max_triangles} triangles a scene may hold"
                         )));
                     }
-                }
-                let w = if n.len == 4 { n.values[3] } else { 1.0 };
-                positions.push(Vec3::new(n.values[0], n.values[1], n.values[2]) / w);
-            }
-            "vt" => {
-                let n = numbers::<3>(words, "vt", line)?;
-                if n.len == 0 {
-                    return Err(fail("`vt` needs u (and optional v, w)".into()));
-                }
-                // OBJ's v runs up the picture, prism's down it (as image rows do).
-                let v = if n.len > 1 { n.values[1] } else { 0.0 };
-                uvs.push(Vec2::new(n.values[0], 1.0 - v));
-            }
-            "vn" => {
-                let n = numbers::<3>(words, "vn", line)?;
-                if n.len != 3 {
-                    return Err(fail(format!("`vn` needs x y z, got {} numbers", n.len)));
-                }
-                normals.push(Vec3::from_slice(&n.values));
-            }
-            "f" => {
-                corners.clear();
-                for word in words {
-                    corners.push(corner(
-                        word,
-                        (positions.len(), uvs.len(), normals.len()),
-                        line,
-                    )?);
-                }
-                if corners.len() < 3 {
-                    return Err(fail(format!(
-                        "a face needs at least three corners, got {}",
-                        corners.len()
-                    )));
-                }
-                triangle_count += corners.len() - 2;
-                if triangle_count > max_triangles {
-                    return Err(fail(format!(
-                        "the mesh has more than the {max_triangles} triangles a scene may hold"
-                    )));
-                }
-                let part = *current.get_or_insert_with(|| {
-                    parts.push(PartBuilder {
-                        material: None,
-                        line,
-                        triangles: Vec::new(),
+                    let part = *current.get_or_insert_with(|| {
+                        parts.push(PartBuilder {
+                            material: None,
+                            line,
+                            triangles: Vec::new(),
+                        });
+                        parts.len() - 1
                     });
-                    parts.len() - 1
-                });
-                for i in 1..corners.len() - 1 {
-                    parts[part]
-                        .triangles
-                        .push([corners[0], corners[i], corners[i + 1]]);
+                    for i in 1..corners.len() - 1 {
+                        parts[part]
+                            .triangles
+                            .push([corners[0], corners[i], corners[i + 1]]);
+                    }
+                }
+                Statement::UseMtl { line, name } => {
+                    let line = lines_before + line;
+                    current = Some(
+                        match parts
+                            .iter()
+                            .position(|p| p.material.as_deref() == Some(name))
+                        {
+                            Some(i) => i,
+                            None => {
+                                parts.push(PartBuilder {
+                                    material: Some(name.to_string()),
+                                    line,
+                                    triangles: Vec::new(),
+                                });
+                                parts.len() - 1
+                            }
+                        },
+                    );
+                }
+                Statement::MtlLib { line, name } => {
+                    libraries.push((name.to_string(), lines_before + line));
                 }
             }
-            "usemtl" => {
-                let name = rest_of(content, keyword);
-                if name.is_empty() {
-                    return Err(fail("`usemtl` needs a material name".into()));
-                }
-                current = Some(
-                    match parts
-                        .iter()
-                        .position(|p| p.material.as_deref() == Some(name))
-                    {
-                        Some(i) => i,
-                        None => {
-                            parts.push(PartBuilder {
-                                material: Some(name.to_string()),
-                                line,
-                                triangles: Vec::new(),
-                            });
-                            parts.len() - 1
-                        }
-                    },
-                );
-            }
-            "mtllib" => {
-                let name = rest_of(content, keyword);
-                if name.is_empty() {
-                    return Err(fail("`mtllib` needs a file name".into()));
-                }
-                libraries.push((name.to_string(), line));
-            }
-            _ => {} // o, g, s, l, p, curves and surfaces: not for a ray tracer of meshes
         }
+        if let Some(e) = piece.error {
+            return Err(LineError {
+                line: lines_before + e.line,
+                message: e.message,
+            });
+        }
+        positions.extend_from_slice(&piece.positions);
+        uvs.extend_from_slice(&piece.uvs);
+        normals.extend_from_slice(&piece.normals);
+        lines_before += piece.lines;
     }
     let parts: Vec<ObjPart> = parts
         .into_iter()
@@ -179,6 +156,172 @@ pub fn parse_obj(text: &str, max_triangles: usize, smooth: bool) -> Result<ObjFi
         });
     }
     Ok(ObjFile { parts, libraries })
+}
+
+/// `text` cut after line ends into pieces of about equal size (one piece when it is small).
+fn cut_at_lines(text: &str) -> Vec<&str> {
+    let threads = rayon::current_num_threads().max(1);
+    let count = (text.len() / PARALLEL_PIECE_BYTES).clamp(1, 4 * threads);
+    let mut pieces = Vec::with_capacity(count);
+    let mut rest = text;
+    for k in (1..count).rev() {
+        let target = rest.len() / (k + 1);
+        match rest.as_bytes()[target..].iter().position(|&b| b == b'\n') {
+            Some(at) => {
+                let (piece, tail) = rest.split_at(target + at + 1);
+                pieces.push(piece);
+                rest = tail;
+            }
+            None => break,
+        }
+    }
+    pieces.push(rest);
+    pieces
+}
+
+/// A face corner as written: vertex, texture coordinate and normal indices (1-based, or
+/// negative to count back), `ABSENT` where the corner has none.
+type RawCorner = [i64; 3];
+const ABSENT: i64 = i64::MIN;
+
+/// The statements of a piece that depend on what came before it, in order; lines are
+/// counted from the piece's start.
+enum Statement<'a> {
+    /// A face, whose corners end at `end` in the piece's corner list, read when the piece
+    /// had defined `counts` positions, texture coordinates and normals.
+    Face {
+        line: usize,
+        end: u32,
+        counts: [u32; 3],
+    },
+    UseMtl {
+        line: usize,
+        name: &'a str,
+    },
+    MtlLib {
+        line: usize,
+        name: &'a str,
+    },
+}
+
+/// What one piece of OBJ text defines, read on its own.
+struct Piece<'a> {
+    positions: Vec<Vec3>,
+    uvs: Vec<Vec2>,
+    normals: Vec<Vec3>,
+    corners: Vec<RawCorner>,
+    statements: Vec<Statement<'a>>,
+    /// The first problem, which ends the piece (its line counted in the piece).
+    error: Option<LineError>,
+    /// How many lines the piece holds.
+    lines: usize,
+}
+
+/// Reads one piece: its numbers, its faces' corners as written, and its other statements.
+fn read_piece(text: &str) -> Piece<'_> {
+    let mut piece = Piece {
+        positions: Vec::new(),
+        uvs: Vec::new(),
+        normals: Vec::new(),
+        corners: Vec::new(),
+        statements: Vec::new(),
+        error: None,
+        lines: text.bytes().filter(|&b| b == b'\n').count(),
+    };
+    for (line, content, keyword, words) in statements(text) {
+        if let Err(e) = read_statement(&mut piece, line, content, keyword, words) {
+            piece.error = Some(e);
+            break;
+        }
+    }
+    piece
+}
+
+fn read_statement<'a>(
+    piece: &mut Piece<'a>,
+    line: usize,
+    content: &'a str,
+    keyword: &str,
+    words: std::str::SplitAsciiWhitespace<'_>,
+) -> Result<(), LineError> {
+    let fail = |message: String| LineError { line, message };
+    match keyword {
+        "v" => {
+            // x y z, an optional w, or (a common extension) a colour r g b.
+            let n = numbers::<6>(words, "v", line)?;
+            match n.len {
+                3 | 6 => {}
+                4 => {
+                    if n.values[3] == 0.0 {
+                        return Err(fail("`v` has a weight w of 0".into()));
+                    }
+                }
+                k => {
+                    return Err(fail(format!(
+                        "`v` needs x y z (and an optional w), got {k} number{}",
+                        if k == 1 { "" } else { "s" }
+                    )));
+                }
+            }
+            let w = if n.len == 4 { n.values[3] } else { 1.0 };
+            piece
+                .positions
+                .push(Vec3::new(n.values[0], n.values[1], n.values[2]) / w);
+        }
+        "vt" => {
+            let n = numbers::<3>(words, "vt", line)?;
+            if n.len == 0 {
+                return Err(fail("`vt` needs u (and optional v, w)".into()));
+            }
+            // OBJ's v runs up the picture, prism's down it (as image rows do).
+            let v = if n.len > 1 { n.values[1] } else { 0.0 };
+            piece.uvs.push(Vec2::new(n.values[0], 1.0 - v));
+        }
+        "vn" => {
+            let n = numbers::<3>(words, "vn", line)?;
+            if n.len != 3 {
+                return Err(fail(format!("`vn` needs x y z, got {} numbers", n.len)));
+            }
+            piece.normals.push(Vec3::from_slice(&n.values));
+        }
+        "f" => {
+            let start = piece.corners.len();
+            for word in words {
+                piece.corners.push(raw_corner(word, line)?);
+            }
+            let count = piece.corners.len() - start;
+            if count < 3 {
+                return Err(fail(format!(
+                    "a face needs at least three corners, got {count}"
+                )));
+            }
+            piece.statements.push(Statement::Face {
+                line,
+                end: piece.corners.len() as u32,
+                counts: [
+                    piece.positions.len() as u32,
+                    piece.uvs.len() as u32,
+                    piece.normals.len() as u32,
+                ],
+            });
+        }
+        "usemtl" => {
+            let name = rest_of(content, keyword);
+            if name.is_empty() {
+                return Err(fail("`usemtl` needs a material name".into()));
+            }
+            piece.statements.push(Statement::UseMtl { line, name });
+        }
+        "mtllib" => {
+            let name = rest_of(content, keyword);
+            if name.is_empty() {
+                return Err(fail("`mtllib` needs a file name".into()));
+            }
+            piece.statements.push(Statement::MtlLib { line, name });
+        }
+        _ => {} // o, g, s, l, p, curves and surfaces: not for a ray tracer of meshes
+    }
+    Ok(())
 }
 
 /// The statements of OBJ or MTL text: each non-blank line's number (from 1), its text
@@ -240,41 +383,66 @@ fn rest_of<'a>(content: &'a str, keyword: &str) -> &'a str {
     content[keyword.len()..].trim()
 }
 
-/// One face corner, `v`, `v/vt`, `v//vn` or `v/vt/vn`, 1-based or negative (counted back
-/// from the last element defined so far), checked against the counts so far.
-fn corner(word: &str, counts: (usize, usize, usize), line: usize) -> Result<Corner, LineError> {
+/// One face corner as written, `v`, `v/vt`, `v//vn` or `v/vt/vn`: its indices, not yet
+/// checked against what is defined.
+fn raw_corner(word: &str, line: usize) -> Result<RawCorner, LineError> {
     let fail = |message: String| LineError { line, message };
     let mut fields = word.split('/');
-    let mut index = |what: &str, count: usize, required: bool| -> Result<Option<u32>, LineError> {
+    let mut index = |what: &str, required: bool| -> Result<i64, LineError> {
         let Some(text) = fields.next().filter(|t| !t.is_empty() || required) else {
-            return Ok(None);
+            return Ok(ABSENT);
         };
-        let i: i64 = text.parse().map_err(|_| {
+        text.parse().map_err(|_| {
             fail(format!(
                 "face corner {}: {} is not a {what} index",
                 crate::messages::quoted(word),
                 crate::messages::quoted(text)
             ))
-        })?;
-        let resolved = if i > 0 { i - 1 } else { count as i64 + i };
-        if i == 0 || resolved < 0 || resolved >= count as i64 {
-            return Err(fail(format!(
-                "face corner {}: {what} index {i} is out of range ({count} defined so far)",
-                crate::messages::quoted(word)
-            )));
-        }
-        Ok(Some(resolved as u32))
+        })
     };
-    let v = index("vertex", counts.0, true)?.expect("required");
-    let vt = index("texture coordinate", counts.1, false)?;
-    let vn = index("normal", counts.2, false)?;
+    let v = index("vertex", true)?;
+    let vt = index("texture coordinate", false)?;
+    let vn = index("normal", false)?;
     if fields.next().is_some() {
         return Err(fail(format!(
             "face corner {} has more than three indices",
             crate::messages::quoted(word)
         )));
     }
-    Ok((v, vt, vn))
+    Ok([v, vt, vn])
+}
+
+/// A corner's indices resolved (1-based, or negative: counted back from the last element
+/// defined so far) against the counts of positions, texture coordinates and normals so far.
+fn resolve(raw: &RawCorner, counts: [usize; 3], line: usize) -> Result<Corner, LineError> {
+    let written = || match raw {
+        [v, ABSENT, ABSENT] => format!("{v}"),
+        [v, t, ABSENT] => format!("{v}/{t}"),
+        [v, ABSENT, n] => format!("{v}//{n}"),
+        [v, t, n] => format!("{v}/{t}/{n}"),
+    };
+    let what = ["vertex", "texture coordinate", "normal"];
+    let mut out = [None; 3];
+    for k in 0..3 {
+        let i = raw[k];
+        if i == ABSENT {
+            continue;
+        }
+        let count = counts[k];
+        let resolved = if i > 0 { i - 1 } else { count as i64 + i };
+        if i == 0 || resolved < 0 || resolved >= count as i64 {
+            return Err(LineError {
+                line,
+                message: format!(
+                    "face corner {}: {} index {i} is out of range ({count} defined so far)",
+                    crate::messages::quoted(&written()),
+                    what[k]
+                ),
+            });
+        }
+        out[k] = Some(resolved as u32);
+    }
+    Ok((out[0].expect("a vertex index is required"), out[1], out[2]))
 }
 
 /// The mesh of one part: each distinct corner (position, texture coordinate, normal)
@@ -295,13 +463,22 @@ fn build_part(
             if all_normals { c.2 } else { None },
         )
     };
-    let mut vertex_of: HashMap<Corner, u32> = HashMap::new();
+    // Most positions make one vertex: the first corner at each position is found by a
+    // table indexed by position, and only corners that differ from it there (a seam of
+    // texture coordinates or normals) by a hash map.
+    let mut first_at: Vec<u32> = vec![u32::MAX; positions.len()];
+    let mut keys: Vec<Corner> = Vec::new();
+    let mut others: HashMap<Corner, u32> = HashMap::new();
     let (mut p_out, mut uv_out, mut n_out) = (Vec::new(), Vec::new(), Vec::new());
     let mut triangles = Vec::with_capacity(part.triangles.len());
     for tri in &part.triangles {
         triangles.push(tri.map(|c| {
             let k = key(&c);
-            *vertex_of.entry(k).or_insert_with(|| {
+            let first = first_at[k.0 as usize];
+            if first != u32::MAX && keys[first as usize] == k {
+                return first;
+            }
+            let mut add = || {
                 p_out.push(positions[k.0 as usize]);
                 if let Some(t) = k.1 {
                     uv_out.push(uvs[t as usize]);
@@ -309,8 +486,16 @@ fn build_part(
                 if let Some(n) = k.2 {
                     n_out.push(normals[n as usize]);
                 }
+                keys.push(k);
                 (p_out.len() - 1) as u32
-            })
+            };
+            if first == u32::MAX {
+                let v = add();
+                first_at[k.0 as usize] = v;
+                v
+            } else {
+                *others.entry(k).or_insert_with(add)
+            }
         }));
     }
     let mesh = Mesh::new(p_out, n_out, uv_out, triangles).map_err(|e| LineError {
@@ -483,6 +668,63 @@ mod tests {
         assert_eq!(file.parts[0].mesh.triangle_count(), 2);
         assert!(!file.parts[0].mesh.has_uvs());
         assert!(file.parts[1].mesh.is_smooth());
+    }
+
+    /// Text large enough to be read in parallel pieces reads as it would in one: corners
+    /// counted back across pieces resolve, materials switch where they should, and a
+    /// problem far down the file is named by its own line.
+    #[test]
+    fn large_files_read_in_pieces_as_in_one() {
+        let rows = 400;
+        let mut text = String::from("mtllib m.mtl\n");
+        let mut lines = 1;
+        for r in 0..rows {
+            for c in 0..rows {
+                text.push_str(&format!("v {c} {r} 0.5\n"));
+                lines += 1;
+            }
+            if r > 0 {
+                text.push_str(if r % 2 == 0 {
+                    "usemtl even\n"
+                } else {
+                    "usemtl odd\n"
+                });
+                lines += 1;
+                // The previous row by absolute indices, this row counted back.
+                for c in 0..rows - 1 {
+                    let below = (r - 1) * rows + c + 1;
+                    let back = rows - c;
+                    text.push_str(&format!("f {below} {} -{} -{back}\n", below + 1, back - 1));
+                    lines += 1;
+                }
+            }
+        }
+        assert!(
+            text.len() > 4 * PARALLEL_PIECE_BYTES,
+            "{} bytes",
+            text.len()
+        );
+        assert!(cut_at_lines(&text).len() > 1);
+        let file = parse_obj(&text, usize::MAX, false).unwrap();
+        assert_eq!(file.libraries, vec![("m.mtl".to_string(), 1)]);
+        let names: Vec<_> = file.parts.iter().map(|p| p.material.clone()).collect();
+        assert_eq!(names, vec![Some("odd".into()), Some("even".into())]);
+        let triangles: usize = file.parts.iter().map(|p| p.mesh.triangle_count()).sum();
+        assert_eq!(triangles, 2 * (rows - 1) * (rows - 1));
+        // Every triangle spans one grid cell: its corners one apart in x or y.
+        for part in &file.parts {
+            let p = part.mesh.positions();
+            for t in part.mesh.triangles() {
+                let [a, b, c] = t.map(|i| glam::Vec3::from(p[i as usize]));
+                let span = a.max(b).max(c) - a.min(b).min(c);
+                assert_eq!((span.x, span.y, span.z), (1.0, 1.0, 0.0), "{a} {b} {c}");
+            }
+        }
+        // A corner out of range on the last line is reported there.
+        let bad = format!("{text}f 1 2 {}\n", rows * rows + 1);
+        let e = parse_obj(&bad, usize::MAX, false).unwrap_err();
+        assert_eq!(e.line, lines + 1);
+        assert!(e.message.contains("out of range"), "{}", e.message);
     }
 
     #[test]
