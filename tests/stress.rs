@@ -609,14 +609,16 @@ proptest! {
         use std::f32::consts::TAU;
         let c = offset * mag * 10f32.powf(offset_exp);
         let (a, b) = (angles.0 * TAU, angles.1 * TAU);
-        let (shape, target) = match kind {
+        let (shape, target, normal) = match kind {
             0 => {
                 let half = Vec3::new(1.0, shape_ratio, 0.5) * mag;
                 // A point on the +x, +y or +z face, by angle a.
                 let axis = (angles.0 * 3.0) as usize % 3;
                 let mut t = Vec3::new(angles.1 * 2.0 - 1.0, shape_ratio - 0.5, 0.3) * half;
                 t[axis] = half[axis];
-                (Shape::Cuboid(Cuboid::new(c - half, c + half)), c + t)
+                let mut normal = Vec3::ZERO;
+                normal[axis] = 1.0;
+                (Shape::Cuboid(Cuboid::new(c - half, c + half)), c + t, normal)
             }
             1 => {
                 let (r, h) = (mag, mag * 2.0);
@@ -624,19 +626,24 @@ proptest! {
                 let y = h * 0.5;
                 let ry = r + (top - r) * 0.5;
                 let t = c + Vec3::new(ry * b.sin(), y, ry * b.cos());
-                (Shape::Cone(Cone { base: c, radius: r, top_radius: top, height: h, caps: true }), t)
+                let normal = Vec3::new(b.sin(), -(top - r) / h, b.cos()).normalize();
+                (Shape::Cone(Cone { base: c, radius: r, top_radius: top, height: h, caps: true }), t, normal)
             }
             _ => {
                 let (big, small) = (mag, mag * shape_ratio * 0.9);
                 let ring = Vec3::new(a.sin(), 0.0, a.cos());
                 let n = ring * b.cos() + Vec3::Y * b.sin();
                 let t = c + ring * big + n * small;
-                (Shape::Torus(Torus { center: c, major_radius: big, minor_radius: small }), t)
+                (Shape::Torus(Torus { center: c, major_radius: big, minor_radius: small }), t, n)
             }
         };
         let size = mag * 3.0;
         let o = target + from * size * distance;
         let ray = Ray::new(o, target - o);
+        // The f32 ray passes within rounding of the target, not through it: a ray that
+        // grazes the surface there may cross it far from the target, as the f64 function
+        // agrees (the sphere's test aims inside its rim for the same reason).
+        prop_assume!(normal.dot((target - o).normalize()).abs() > 0.01);
         let q = RayQuery::new(ray);
         let hit = shape.intersect(&q, f32::INFINITY);
         // The line passes through the target, so it crosses the surface at or before it

@@ -40,7 +40,9 @@ pub struct ObjFile {
 }
 
 /// One corner of a face: indices into the file's positions, texture coordinates, normals.
-type Corner = (u32, Option<u32>, Option<u32>);
+type Corner = [u32; 3];
+/// A corner's index where it has none (no texture coordinate, no normal).
+const NONE: u32 = u32::MAX;
 
 /// The faces that use one material, as they are read.
 struct PartBuilder {
@@ -422,7 +424,7 @@ fn resolve(raw: &RawCorner, counts: [usize; 3], line: usize) -> Result<Corner, L
         [v, t, n] => format!("{v}/{t}/{n}"),
     };
     let what = ["vertex", "texture coordinate", "normal"];
-    let mut out = [None; 3];
+    let mut out = [NONE; 3];
     for k in 0..3 {
         let i = raw[k];
         if i == ABSENT {
@@ -440,9 +442,9 @@ fn resolve(raw: &RawCorner, counts: [usize; 3], line: usize) -> Result<Corner, L
                 ),
             });
         }
-        out[k] = Some(resolved as u32);
+        out[k] = resolved as u32;
     }
-    Ok((out[0].expect("a vertex index is required"), out[1], out[2]))
+    Ok(out)
 }
 
 /// The mesh of one part: each distinct corner (position, texture coordinate, normal)
@@ -454,14 +456,14 @@ fn build_part(
     normals: &[Vec3],
     smooth: bool,
 ) -> Result<ObjPart, LineError> {
-    let all_uv = part.triangles.iter().flatten().all(|c| c.1.is_some());
-    let all_normals = part.triangles.iter().flatten().all(|c| c.2.is_some());
-    let key = |c: &Corner| {
-        (
-            c.0,
-            if all_uv { c.1 } else { None },
-            if all_normals { c.2 } else { None },
-        )
+    let all_uv = part.triangles.iter().flatten().all(|c| c[1] != NONE);
+    let all_normals = part.triangles.iter().flatten().all(|c| c[2] != NONE);
+    let key = |c: &Corner| -> Corner {
+        [
+            c[0],
+            if all_uv { c[1] } else { NONE },
+            if all_normals { c[2] } else { NONE },
+        ]
     };
     // Most positions make one vertex: the first corner at each position is found by a
     // table indexed by position, and only corners that differ from it there (a seam of
@@ -474,24 +476,24 @@ fn build_part(
     for tri in &part.triangles {
         triangles.push(tri.map(|c| {
             let k = key(&c);
-            let first = first_at[k.0 as usize];
+            let first = first_at[k[0] as usize];
             if first != u32::MAX && keys[first as usize] == k {
                 return first;
             }
             let mut add = || {
-                p_out.push(positions[k.0 as usize]);
-                if let Some(t) = k.1 {
-                    uv_out.push(uvs[t as usize]);
+                p_out.push(positions[k[0] as usize]);
+                if k[1] != NONE {
+                    uv_out.push(uvs[k[1] as usize]);
                 }
-                if let Some(n) = k.2 {
-                    n_out.push(normals[n as usize]);
+                if k[2] != NONE {
+                    n_out.push(normals[k[2] as usize]);
                 }
                 keys.push(k);
                 (p_out.len() - 1) as u32
             };
             if first == u32::MAX {
                 let v = add();
-                first_at[k.0 as usize] = v;
+                first_at[k[0] as usize] = v;
                 v
             } else {
                 *others.entry(k).or_insert_with(add)
