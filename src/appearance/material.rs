@@ -6,7 +6,9 @@ use glam::{Vec3, Vec3A};
 /// A Whitted material, as in the seed: Phong local shading, plus a mirror term and a
 /// transmitted term that may bend by Snell's law.
 ///
-/// Colour = (1 − transparency)·local + reflectivity·reflected + transparency·transmitted.
+/// Colour = (1 − transparency)·local + reflectivity·reflected + transparency·transmitted;
+/// with `fresnel`, the reflected and transmitted shares of reflectivity + transparency are
+/// instead split by the dielectric's Fresnel reflectance at each hit.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Material {
     /// The surface colour: a solid colour, a pattern or an image.
@@ -28,6 +30,11 @@ pub struct Material {
     /// Light the surface gives off itself, added unlit (a glowing lamp, a screen); black
     /// for the seed's materials.
     pub emission: Vec3,
+    /// Whether reflection and transmission follow the Fresnel equations of a dielectric of
+    /// index `eta` (reflection rising to all of it at grazing angles and past the critical
+    /// angle) rather than the fixed `reflectivity` and `transparency`; false for the
+    /// seed's Whitted materials.
+    pub fresnel: bool,
 }
 
 impl Default for Material {
@@ -42,6 +49,7 @@ impl Default for Material {
             transparency: 0.0,
             eta: None,
             emission: Vec3::ZERO,
+            fresnel: false,
         }
     }
 }
@@ -54,6 +62,23 @@ impl Material {
         let t = self.transparency;
         (self.texture.mean() * (1.0 - t) + Vec3::splat(t)) * t
     }
+}
+
+/// The fraction of unpolarised light a smooth dielectric boundary reflects, for light
+/// arriving at `cos_i` from the normal, with `eta_ratio` = η(incident side) / η(other side):
+/// the mean of the s- and p-polarised Fresnel reflectances; 1 past the critical angle (the
+/// rest, 1 − R, is transmitted).
+#[inline]
+pub fn fresnel_reflectance(cos_i: f32, eta_ratio: f32) -> f32 {
+    let cos_i = cos_i.clamp(0.0, 1.0);
+    let sin2_t = eta_ratio * eta_ratio * (1.0 - cos_i * cos_i).max(0.0);
+    if sin2_t >= 1.0 {
+        return 1.0;
+    }
+    let cos_t = (1.0 - sin2_t).sqrt();
+    let rs = (eta_ratio * cos_i - cos_t) / (eta_ratio * cos_i + cos_t);
+    let rp = (cos_i - eta_ratio * cos_t) / (cos_i + eta_ratio * cos_t);
+    (0.5 * (rs * rs + rp * rp)).clamp(0.0, 1.0)
 }
 
 /// Mirror reflection of direction `d` about unit normal `n`.
@@ -134,6 +159,61 @@ mod tests {
         let angle = exact.dot(near).clamp(-1.0, 1.0).acos().to_degrees();
         // d(θt)/d(η) = tan θ at η = 1, so 0.002 bends by about 0.002·tan 60° rad ≈ 0.2°.
         assert!(angle > 0.1 && angle < 0.3, "bent by {angle}°");
+    }
+
+    /// The textbook Fresnel reflectance in f64, from the angles themselves.
+    fn fresnel_f64(theta_i: f64, n1: f64, n2: f64) -> f64 {
+        let sin_t = n1 / n2 * theta_i.sin();
+        if sin_t >= 1.0 {
+            return 1.0;
+        }
+        let theta_t = sin_t.asin();
+        let (ci, ct) = (theta_i.cos(), theta_t.cos());
+        let rs = (n1 * ci - n2 * ct) / (n1 * ci + n2 * ct);
+        let rp = (n2 * ci - n1 * ct) / (n2 * ci + n1 * ct);
+        0.5 * (rs * rs + rp * rp)
+    }
+
+    #[test]
+    fn fresnel_reflectance_matches_the_exact_formula() {
+        for (n1, n2) in [(1.0, 1.5), (1.5, 1.0), (1.0, 1.33), (1.33, 1.5), (1.0, 2.4)] {
+            for k in 0..=90 {
+                let theta = (k as f64).to_radians();
+                let got = fresnel_reflectance(theta.cos() as f32, (n1 / n2) as f32) as f64;
+                let want = fresnel_f64(theta, n1, n2);
+                assert!(
+                    (got - want).abs() < 1e-5,
+                    "{n1}→{n2} at {k}°: {got} vs {want}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn fresnel_at_normal_incidence_brewster_grazing_and_past_the_critical_angle() {
+        // Normal incidence: ((n1 − n2) / (n1 + n2))² = 0.04 for glass.
+        assert!((fresnel_reflectance(1.0, 1.0 / 1.5) - 0.04).abs() < 1e-6);
+        // At Brewster's angle, atan(1.5), only the s-polarised half reflects.
+        let brewster = 1.5f64.atan();
+        let rs = {
+            let t = (brewster.sin() / 1.5).asin();
+            let (ci, ct) = (brewster.cos(), t.cos());
+            (ci - 1.5 * ct) / (ci + 1.5 * ct)
+        };
+        let r = fresnel_reflectance(brewster.cos() as f32, 1.0 / 1.5) as f64;
+        assert!((r - 0.5 * rs * rs).abs() < 1e-6, "{r}");
+        // Grazing: everything.
+        assert!(fresnel_reflectance(0.0, 1.0 / 1.5) > 0.999);
+        // From glass to air past asin(1/1.5) ≈ 41.8°: total internal reflection.
+        let past = 42.0f32.to_radians().cos();
+        assert_eq!(fresnel_reflectance(past, 1.5), 1.0);
+        assert!(fresnel_reflectance(41.5f32.to_radians().cos(), 1.5) < 1.0);
+        // The same boundary crossed either way reflects the same (reciprocity).
+        let theta_i = 30f32.to_radians();
+        let theta_t = (theta_i.sin() / 1.5).asin();
+        let there = fresnel_reflectance(theta_i.cos(), 1.0 / 1.5);
+        let back = fresnel_reflectance(theta_t.cos(), 1.5);
+        assert!((there - back).abs() < 1e-6);
     }
 
     #[test]

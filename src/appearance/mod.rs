@@ -8,7 +8,7 @@ mod texture;
 
 pub use background::Background;
 pub use light::{Falloff, Light, LightKind, MAX_FALLOFF_GAIN};
-pub use material::{Material, reflect, refract};
+pub use material::{Material, fresnel_reflectance, reflect, refract};
 pub use texture::{ImageTexture, Texture, TextureError, UvTransform};
 
 use glam::{Vec3, Vec3A};

@@ -12,7 +12,7 @@ mod transmission;
 pub use signature::Signature;
 
 use crate::accel::{Accelerator, Hit, Reach};
-use crate::appearance::{Appearance, Material};
+use crate::appearance::{Appearance, Material, fresnel_reflectance};
 use crate::geometry::{Ray, RayQuery, SurfacePoint};
 use crate::numerics::offset_ray_origin;
 use crate::scene::{Geometry, PreparedScene};
@@ -227,8 +227,9 @@ impl<'a> Integrator<'a> {
 
         // Reflection and refraction spend a bounce; a straight crossing does not.
         let bounces_left = path.depth < self.appearance.max_depth();
-        let reflects = self.reflects(material, path, bounces_left);
-        let transmits = self.transmits(material, path, bounces_left);
+        let (reflectivity, transparency) = self.split(&at);
+        let reflects = self.reflects(reflectivity, path, bounces_left);
+        let transmits = self.transmits(material, transparency, path, bounces_left);
         // The rays this hit spawns share what is left of the sample's budget evenly; when
         // it cannot pay for them all, none is traced, as if the depth limit were reached.
         let children = reflects as u32 + transmits as u32;
@@ -237,13 +238,31 @@ impl<'a> Integrator<'a> {
         }
         let share = (path.budget - children) / children;
         if reflects {
-            color += self.reflection(&at, path.bounce(material.reflectivity, share))
-                * material.reflectivity;
+            color += self.reflection(&at, path.bounce(reflectivity, share)) * reflectivity;
         }
         if transmits {
-            color += self.transmission(&at, path, share) * material.transparency;
+            color += self.transmission(&at, transparency, path, share) * transparency;
         }
         color
+    }
+
+    /// The shares of the light at `at` that are reflected and transmitted: the material's
+    /// own, or for a Fresnel dielectric its reflectance at this angle of all that is not
+    /// diffuse (reflectivity + transparency), and the rest transmitted.
+    #[inline]
+    fn split(&self, at: &Shading) -> (f32, f32) {
+        let material = at.material;
+        match material.eta {
+            Some(eta) if material.fresnel && eta != 1.0 => {
+                let ratio = if at.entering { 1.0 / eta } else { eta };
+                let d = at.q.ray.dir;
+                let cos_i = -d.dot(at.ns) / d.length();
+                let r = fresnel_reflectance(cos_i, ratio);
+                let specular = (material.reflectivity + material.transparency).min(1.0);
+                (specular * r, specular * (1.0 - r))
+            }
+            _ => (material.reflectivity, material.transparency),
+        }
     }
 
     /// The direction `turn` gives about the shading normal, when it leaves on the side of

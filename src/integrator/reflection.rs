@@ -2,16 +2,16 @@
 
 use super::path::Path;
 use super::{Integrator, Shading};
-use crate::appearance::{Material, reflect};
+use crate::appearance::reflect;
 use crate::geometry::{Ray, RayQuery};
 use glam::Vec3A;
 
 impl Integrator<'_> {
-    /// Whether a hit on `material` along `path` spawns a reflected ray: it reflects, a
-    /// bounce is left, and the ray would weigh enough to matter.
+    /// Whether a hit that reflects `reflectivity` of the light along `path` spawns a
+    /// reflected ray: it reflects, a bounce is left, and the ray would weigh enough to
+    /// matter.
     #[inline]
-    pub(super) fn reflects(&self, material: &Material, path: Path, bounces_left: bool) -> bool {
-        let reflectivity = material.reflectivity;
+    pub(super) fn reflects(&self, reflectivity: f32, path: Path, bounces_left: bool) -> bool {
         bounces_left && reflectivity > 0.0 && path.weight * reflectivity >= self.min_weight
     }
 

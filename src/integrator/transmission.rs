@@ -14,12 +14,17 @@ fn bends(material: &Material) -> bool {
 }
 
 impl Integrator<'_> {
-    /// Whether a hit on `material` along `path` spawns a transmitted ray: it is
-    /// transparent, the ray would weigh enough to matter, and a bent ray has a bounce left
-    /// (a straight one, a crossing left).
+    /// Whether a hit on `material` that transmits `transparency` of the light along `path`
+    /// spawns a transmitted ray: it is transparent, the ray would weigh enough to matter,
+    /// and a bent ray has a bounce left (a straight one, a crossing left).
     #[inline]
-    pub(super) fn transmits(&self, material: &Material, path: Path, bounces_left: bool) -> bool {
-        let transparency = material.transparency;
+    pub(super) fn transmits(
+        &self,
+        material: &Material,
+        transparency: f32,
+        path: Path,
+        bounces_left: bool,
+    ) -> bool {
         transparency > 0.0
             && path.weight * transparency >= self.min_weight
             && if bends(material) {
@@ -29,10 +34,16 @@ impl Integrator<'_> {
             }
     }
 
-    /// The light the transmitted ray from `at` brings back (before the transparency scales
-    /// it); its subtree may spend `budget` rays.
+    /// The light the transmitted ray from `at` brings back (before `transparency`, the
+    /// share transmitted, scales it); its subtree may spend `budget` rays.
     #[inline]
-    pub(super) fn transmission(&mut self, at: &Shading, path: Path, budget: u32) -> Vec3A {
+    pub(super) fn transmission(
+        &mut self,
+        at: &Shading,
+        transparency: f32,
+        path: Path,
+        budget: u32,
+    ) -> Vec3A {
         self.counts.secondary += 1;
         let material = at.material;
         let ray = at.q.ray;
@@ -48,12 +59,12 @@ impl Integrator<'_> {
             let origin = self.leave(&at.surface, at.n, dir);
             let q = RayQuery::new(Ray::new(origin, dir));
             let inside = self.inside(at, dir);
-            self.trace(&q, 0.0, inside, path.bounce(material.transparency, budget))
+            self.trace(&q, 0.0, inside, path.bounce(transparency, budget))
         } else {
             // Unbent light goes on along the very same ray, past this hit: exact, so an
             // eta-1 clear object leaves the image untouched.
             let inside = self.inside(at, ray.dir);
-            let path = path.straight_on(material.transparency, budget);
+            let path = path.straight_on(transparency, budget);
             self.trace(at.q, at.hit.shape.t, inside, path)
         }
     }

@@ -136,6 +136,7 @@ struct MaterialDef {
     transparency: Option<f32>,
     eta: Option<f32>,
     emission: Option<V3>,
+    fresnel: Option<bool>,
 }
 
 #[derive(Deserialize)]
@@ -1403,6 +1404,14 @@ impl Validator<'_> {
                 Some(self.in_range(&at, "eta", e, *limits::ETA.start(), *limits::ETA.end())?)
             }
         };
+        let fresnel = m.fresnel.unwrap_or(false);
+        if fresnel && !matches!(eta, Some(e) if e != 1.0) {
+            return Err(self.field_error(
+                &at,
+                "fresnel",
+                "`fresnel = true` needs a refractive material: an `eta` other than 1",
+            ));
+        }
         Ok(Material {
             texture,
             ambient: factor("ambient", m.ambient, d.ambient)?,
@@ -1422,6 +1431,7 @@ impl Validator<'_> {
                 Some(e) => self.radiance(&at, "emission", e)?,
                 None => d.emission,
             },
+            fresnel,
         })
     }
 }
