@@ -4,7 +4,7 @@
 //! with the discriminant formed in f64, where its products are exact.
 
 use super::aabb::Aabb;
-use super::cylinder::{CylinderPart, nearest_candidate};
+use super::cylinder::{CylinderPart, crossing_count, nearest_candidate};
 use super::ray::Ray;
 use crate::numerics::gamma;
 use glam::{Vec2, Vec3, Vec3A};
@@ -97,14 +97,7 @@ impl Cone {
     /// How many times the segment (0, t_max) crosses the surface.
     #[inline]
     pub fn crossings(&self, ray: &Ray, t_max: f32) -> u32 {
-        let n = self
-            .candidates(ray)
-            .iter()
-            .filter(|(t, _)| *t > 0.0 && *t < t_max)
-            .count() as u32;
-        // A closed cone is convex: a line crosses it at most twice (a ray through a rim
-        // may count a side and a cap both).
-        if self.caps { n.min(2) } else { n }
+        crossing_count(&self.candidates(ray), t_max)
     }
 
     /// Hit point (the side's moved onto the surface at its height), outward unit normal and

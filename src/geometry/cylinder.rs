@@ -111,13 +111,7 @@ impl Cylinder {
     /// How many times the segment (0, t_max) crosses the surface.
     #[inline]
     pub fn crossings(&self, ray: &Ray, t_max: f32) -> u32 {
-        // A line crosses a closed cylinder at most twice (one through a rim may count a
-        // side and a cap both); an open tube's side alone, at most twice too.
-        self.candidates(ray)
-            .iter()
-            .filter(|(t, _)| *t > 0.0 && *t < t_max)
-            .count()
-            .min(2) as u32
+        crossing_count(&self.candidates(ray), t_max)
     }
 
     /// Hit point (moved exactly onto the surface), outward unit normal and error bound.
@@ -177,6 +171,18 @@ impl Cylinder {
             max: self.base + Vec3::new(self.radius, self.height, self.radius),
         }
     }
+}
+
+/// How many of a cylinder's or cone's candidates lie in (0, t_max). A line crosses a closed
+/// one at most twice (one through a rim may count a side and a cap both), and an open one's
+/// side alone at most twice too.
+#[inline]
+pub(super) fn crossing_count(candidates: &[(f32, CylinderPart); 4], t_max: f32) -> u32 {
+    candidates
+        .iter()
+        .filter(|(t, _)| *t > 0.0 && *t < t_max)
+        .count()
+        .min(2) as u32
 }
 
 /// The nearest of a cylinder's or cone's candidates (NaN for none) in (t_min, t_max).

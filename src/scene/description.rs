@@ -4,7 +4,7 @@
 use crate::appearance::Material;
 use crate::appearance::{Background, Falloff, Light, LightKind};
 use crate::camera::Camera;
-use crate::geometry::{Aabb, Disc, Mesh, Transform};
+use crate::geometry::{Aabb, Cone, Cuboid, Cylinder, Disc, Mesh, Shape, Sphere, Torus, Transform};
 use glam::{Affine3A, DVec3, Quat, Vec3};
 use std::sync::Arc;
 
@@ -186,6 +186,51 @@ impl ShapeDesc {
         }
     }
 
+    /// The one shape it is by its own parameters, in the scene's space (or in its own,
+    /// under a `Transformed`'s transform); None for a shape made of several (a polygon, a
+    /// tetrahedron), for a plane (traced as a disc sized to the scene, geometry.rs) and for
+    /// a mesh or a transformed shape.
+    pub fn solid(&self) -> Option<Shape> {
+        Some(match *self {
+            ShapeDesc::Sphere { center, radius } => Shape::Sphere(Sphere::new(center, radius)),
+            ShapeDesc::Cylinder {
+                base,
+                radius,
+                height,
+                caps,
+            } => Shape::Cylinder(Cylinder::new(base, radius, height).with_caps(caps)),
+            ShapeDesc::Cuboid { min, max } => Shape::Cuboid(Cuboid::new(min, max)),
+            ShapeDesc::Disc {
+                center,
+                normal,
+                radius,
+            } => Shape::Disc(Disc::new(center, normal, radius)),
+            ShapeDesc::Cone {
+                base,
+                radius,
+                top_radius,
+                height,
+                caps,
+            } => Shape::Cone(Cone {
+                base,
+                radius,
+                top_radius,
+                height,
+                caps,
+            }),
+            ShapeDesc::Torus {
+                center,
+                major_radius,
+                minor_radius,
+            } => Shape::Torus(Torus {
+                center,
+                major_radius,
+                minor_radius,
+            }),
+            _ => return None,
+        })
+    }
+
     /// The box around the shape, from its description alone (nothing is prepared). A plane,
     /// having none, gives the box around its point.
     pub fn bounds(&self) -> Aabb {
@@ -194,57 +239,7 @@ impl ShapeDesc {
             max: points.iter().copied().fold(Vec3::NEG_INFINITY, Vec3::max),
         };
         match self {
-            ShapeDesc::Sphere { center, radius } => Aabb {
-                min: *center - Vec3::splat(*radius),
-                max: *center + Vec3::splat(*radius),
-            },
-            ShapeDesc::Cylinder {
-                base,
-                radius,
-                height,
-                ..
-            } => Aabb {
-                min: *base - Vec3::new(*radius, 0.0, *radius),
-                max: *base + Vec3::new(*radius, *height, *radius),
-            },
-            ShapeDesc::Cuboid { min, max } => Aabb {
-                min: *min,
-                max: *max,
-            },
-            ShapeDesc::Disc {
-                center,
-                normal,
-                radius,
-            } => Disc::new(*center, *normal, *radius).bounds(),
             ShapeDesc::Plane { point, .. } => around(&[*point]),
-            ShapeDesc::Cone {
-                base,
-                radius,
-                top_radius,
-                height,
-                ..
-            } => {
-                let r = radius.max(*top_radius);
-                Aabb {
-                    min: *base - Vec3::new(r, 0.0, r),
-                    max: *base + Vec3::new(r, *height, r),
-                }
-            }
-            ShapeDesc::Torus {
-                center,
-                major_radius,
-                minor_radius,
-            } => {
-                let reach = Vec3::new(
-                    major_radius + minor_radius,
-                    *minor_radius,
-                    major_radius + minor_radius,
-                );
-                Aabb {
-                    min: *center - reach,
-                    max: *center + reach,
-                }
-            }
             ShapeDesc::Polygon { vertices } => around(vertices),
             ShapeDesc::Triangle { vertices } => around(vertices),
             ShapeDesc::Tetrahedron { vertices } => around(vertices),
@@ -252,6 +247,7 @@ impl ShapeDesc {
             ShapeDesc::Transformed { shape, transform } => {
                 transform.bounds_to_scene(&shape.bounds())
             }
+            one => one.solid().expect("every other kind is one shape").bounds(),
         }
     }
 

@@ -4,9 +4,7 @@
 
 use super::description::{Scene, ShapeDesc};
 use crate::accel::{AccelOptions, Accelerator, Instance, Model, Primitive, Surface};
-use crate::geometry::{
-    Cone, Cuboid, Cylinder, Disc, Mesh, Shape, Sphere, Torus, Triangle, picture_axes,
-};
+use crate::geometry::{Disc, Mesh, Shape, Triangle, picture_axes};
 use crate::limits;
 use glam::{Vec3, Vec3A};
 use std::collections::HashMap;
@@ -77,49 +75,6 @@ impl PlanarUv {
     }
 }
 
-/// The one shape a described shape is, by its own parameters (in the scene's space, or in
-/// its own under a transform).
-fn solid_shape(shape: &ShapeDesc) -> Shape {
-    match *shape {
-        ShapeDesc::Sphere { center, radius } => Shape::Sphere(Sphere::new(center, radius)),
-        ShapeDesc::Cylinder {
-            base,
-            radius,
-            height,
-            caps,
-        } => Shape::Cylinder(Cylinder::new(base, radius, height).with_caps(caps)),
-        ShapeDesc::Cuboid { min, max } => Shape::Cuboid(Cuboid::new(min, max)),
-        ShapeDesc::Disc {
-            center,
-            normal,
-            radius,
-        } => Shape::Disc(Disc::new(center, normal, radius)),
-        ShapeDesc::Cone {
-            base,
-            radius,
-            top_radius,
-            height,
-            caps,
-        } => Shape::Cone(Cone {
-            base,
-            radius,
-            top_radius,
-            height,
-            caps,
-        }),
-        ShapeDesc::Torus {
-            center,
-            major_radius,
-            minor_radius,
-        } => Shape::Torus(Torus {
-            center,
-            major_radius,
-            minor_radius,
-        }),
-        ref other => unreachable!("not one shape by its own parameters: {other:?}"),
-    }
-}
-
 /// The radius of the disc that stands for an infinite plane: `limits::PLANE_REACH` times
 /// the scene's extent from the eye (its objects', its lights' and its planes' distances), so
 /// that the image does not change with the scene's scale.
@@ -185,7 +140,7 @@ impl Geometry {
                 | ShapeDesc::Cuboid { .. }
                 | ShapeDesc::Disc { .. }
                 | ShapeDesc::Cone { .. }
-                | ShapeDesc::Torus { .. }) => push(solid_shape(shape)),
+                | ShapeDesc::Torus { .. }) => push(shape.solid().expect("one shape")),
                 ShapeDesc::Triangle {
                     vertices: [a, b, c],
                 } => push(Shape::Triangle(
@@ -231,7 +186,7 @@ impl Geometry {
                     ))));
                 }
                 ShapeDesc::Transformed { shape, transform } => {
-                    let model = solid_shape(shape);
+                    let model = shape.solid().expect("a transformed shape is one shape");
                     push_surface(Surface::Instance(Arc::new(Instance::new(
                         Arc::new(Model::Shape(model)),
                         *transform,
