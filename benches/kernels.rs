@@ -75,8 +75,11 @@ fn whitted_path(c: &mut Criterion) {
     let ray = rays.ray(610.0, 500.0);
     c.bench_function("seed scene, one path through the glass", |b| {
         b.iter(|| {
-            Integrator::new(&prepared, 1.0 / 512.0)
-                .trace_primary(Reach::After(0.0), || black_box(ray))
+            Integrator::new(&prepared, 1.0 / 512.0).trace_primary(
+                Reach::After(0.0),
+                || black_box(ray),
+                prism::sampler::SampleStream::new(0, 0, 0),
+            )
         })
     });
 }

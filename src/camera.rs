@@ -1,4 +1,5 @@
-//! The pinhole camera: where it stands, where it looks, and how wide it sees.
+//! The camera: where it stands, where it looks, how wide it sees, and its lens: a pinhole,
+//! or a thin lens whose aperture blurs what lies off the plane in focus.
 
 use crate::geometry::Ray;
 use glam::{Vec3, Vec3A};
@@ -19,9 +20,13 @@ pub struct Camera {
     pub vfov: f32,
     /// Unit vector that is up on screen when pitch is 0.
     pub up: Vec3,
+    /// The thin lens's diameter, in scene units: 0 is a pinhole, everything sharp.
+    pub aperture: f32,
+    /// How far in front of the eye, along the view axis, the plane in focus lies.
+    pub focus_distance: f32,
 }
 
-use crate::limits::{MAX_COORDINATE, MAX_PITCH, PITCH, VFOV};
+use crate::limits::{MAX_COORDINATE, MAX_PITCH, MIN_LENGTH, PITCH, VFOV};
 
 impl Camera {
     /// A camera at `eye` looking along `direction` with +y up; None when `direction` has
@@ -47,6 +52,8 @@ impl Camera {
             pitch,
             vfov,
             up,
+            aperture: 0.0,
+            focus_distance: 1.0,
         })
     }
 
@@ -70,6 +77,24 @@ impl Camera {
         if !PITCH.contains(&self.pitch) {
             let (lo, hi) = (PITCH.start(), PITCH.end());
             return Err(format!("pitch {} must lie in {lo}..{hi}°", self.pitch));
+        }
+        if !(self.aperture.is_finite()
+            && self.aperture >= 0.0
+            && self.aperture as f64 <= MAX_COORDINATE)
+        {
+            return Err(format!(
+                "aperture {} must be a number from 0 to {MAX_COORDINATE:e}",
+                self.aperture
+            ));
+        }
+        if !(self.focus_distance.is_finite()
+            && self.focus_distance as f64 >= MIN_LENGTH
+            && self.focus_distance as f64 <= MAX_COORDINATE)
+        {
+            return Err(format!(
+                "focus distance {} must be a number from {MIN_LENGTH:e} to {MAX_COORDINATE:e}",
+                self.focus_distance
+            ));
         }
         if !VFOV.contains(&self.vfov) {
             let (lo, hi) = (VFOV.start(), VFOV.end());
@@ -110,6 +135,12 @@ impl Camera {
             up: (up * tan_half).into(),
             inv_width: 1.0 / width as f32,
             inv_height: 1.0 / height as f32,
+            lens: (self.aperture > 0.0).then(|| Lens {
+                radius: self.aperture * 0.5,
+                focus_distance: self.focus_distance,
+                right: right.into(),
+                up: up.into(),
+            }),
         }
     }
 }
@@ -135,6 +166,18 @@ pub struct CameraRays {
     up: Vec3A,
     inv_width: f32,
     inv_height: f32,
+    lens: Option<Lens>,
+}
+
+/// A thin lens: rays through one image point start anywhere on its disc and meet again on
+/// the plane in focus.
+#[derive(Clone, Copy, Debug)]
+struct Lens {
+    radius: f32,
+    focus_distance: f32,
+    /// Unit vectors spanning the lens's disc.
+    right: Vec3A,
+    up: Vec3A,
 }
 
 impl CameraRays {
@@ -147,6 +190,29 @@ impl CameraRays {
         // dir · (1 / |dir|), as `Vec3::normalize` computes it; `Vec3A::normalize` divides
         // instead, which rounds differently.
         Ray::new(self.origin, dir * dir.length_recip())
+    }
+
+    /// Whether the camera has a lens with an aperture: its rays then need a point on it
+    /// (`ray_through_lens`), and no longer all start at the eye.
+    #[inline]
+    pub fn has_lens(&self) -> bool {
+        self.lens.is_some()
+    }
+
+    /// The ray through image position (x, y) and lens sample `u` (in [0, 1)²): from that point
+    /// of the lens's disc, towards where the pinhole ray through (x, y) meets the plane in
+    /// focus. Without an aperture, `ray(x, y)`.
+    #[inline]
+    pub fn ray_through_lens(&self, x: f32, y: f32, u: (f32, f32)) -> Ray {
+        let pinhole = self.ray(x, y);
+        let Some(lens) = self.lens else {
+            return pinhole;
+        };
+        let (dx, dy) = crate::sampler::concentric_disc(u);
+        let focus = pinhole.dir * (lens.focus_distance / pinhole.dir.dot(self.forward));
+        let offset = (lens.right * dx + lens.up * dy) * lens.radius;
+        let dir = focus - offset;
+        Ray::new(self.origin + offset, dir * dir.length_recip())
     }
 
     /// Where the ray through point `p` crosses the image, in pixels from the top-left
@@ -190,6 +256,8 @@ mod tests {
             pitch: 0.0,
             vfov: 90.0,
             up: Vec3::Y,
+            aperture: 0.0,
+            focus_distance: 1.0,
         };
         let rays = cam.rays(200, 100);
         let centre = rays.ray(100.0, 50.0);
@@ -209,6 +277,8 @@ mod tests {
             pitch: 0.0,
             vfov: 2.0 * (10.0f32 / 40.0).atan().to_degrees(),
             up: Vec3::Y,
+            aperture: 0.0,
+            focus_distance: 1.0,
         };
         let top = Vec3::from(cam.rays(100, 100).ray(50.0, 0.0).dir);
         assert!((top.y / -top.z - 0.25).abs() < 1e-6);
@@ -235,8 +305,46 @@ mod tests {
             pitch: 0.0,
             vfov: 40.0,
             up: Vec3::Y,
+            aperture: 0.0,
+            focus_distance: 1.0,
         };
         assert!((cam.forward() - Vec3::X).length() < 1e-6);
+    }
+
+    /// Every ray through one image point meets the others on the plane in focus, and starts
+    /// within the aperture's radius of the eye.
+    #[test]
+    fn lens_rays_meet_on_the_plane_in_focus() {
+        let cam = Camera {
+            eye: Vec3::new(1.0, 2.0, 3.0),
+            yaw: 20.0,
+            pitch: -10.0,
+            vfov: 40.0,
+            up: Vec3::Y,
+            aperture: 0.5,
+            focus_distance: 7.0,
+        };
+        let rays = cam.rays(64, 48);
+        assert!(rays.has_lens());
+        let pinhole = rays.ray(10.3, 40.7);
+        let target = pinhole.origin + pinhole.dir * (7.0 / pinhole.dir.dot(cam.forward().into()));
+        for u in [(0.1, 0.9), (0.5, 0.5), (0.99, 0.01), (0.3, 0.6)] {
+            let r = rays.ray_through_lens(10.3, 40.7, u);
+            assert!((r.origin - Vec3A::from(cam.eye)).length() <= 0.25 + 1e-6);
+            assert!((r.dir.length() - 1.0).abs() < 1e-6);
+            let t = (target - r.origin).dot(r.dir);
+            assert!((r.origin + r.dir * t - target).length() < 1e-5, "{u:?}");
+        }
+        let pin = Camera {
+            aperture: 0.0,
+            ..cam
+        }
+        .rays(64, 48);
+        assert!(!pin.has_lens());
+        assert_eq!(
+            pin.ray_through_lens(3.0, 4.0, (0.2, 0.7)),
+            pin.ray(3.0, 4.0)
+        );
     }
 
     #[test]

@@ -101,6 +101,11 @@ pub const DEPTH: RangeInclusive<u32> = 0..=64;
 /// sample's cost, and the recursion's stack depth, bounded whatever the depth limit.
 pub const RAY_BUDGET: u32 = 1024;
 
+/// How many transparent objects, one inside another, a ray keeps track of: the medium it
+/// travels in, and the one it returns to on leaving, for Snell's law and absorption (a
+/// glass of water in a fish tank needs three). Deeper nesting is treated as this deep.
+pub const MAX_NESTED_MEDIA: usize = 4;
+
 /// The stack of every thread that traces rays (`render::thread_pool`): a sample's ray tree
 /// recurses once per ray of its budget, and a level of it takes a few KiB.
 pub const RENDER_STACK_BYTES: usize = 32 << 20;
@@ -113,6 +118,21 @@ pub const LISTINGS_PER_PRIMITIVE: u64 = 64;
 
 /// Anti-aliasing levels N (N × N subsamples per pixel): file, flags, panel.
 pub const AA: RangeInclusive<u32> = 1..=8;
+
+/// Subsamples per pixel when a scene or a flag asks for a count other than the N×N grid
+/// (`samples`): enough for the noisiest soft shadow, within the 2^16 indices each sample
+/// dimension stratifies (sampler.rs).
+pub const SAMPLES: RangeInclusive<u32> = 1..=65536;
+
+/// A glossy material's roughness: 0 is a mirror, 1 nearly diffuse.
+pub const ROUGHNESS: RangeInclusive<f32> = 0.0..=1.0;
+
+/// A spotlight's half-angle, in degrees, from a pencil beam to every direction.
+pub const SPOT_ANGLE: RangeInclusive<f32> = 0.01..=180.0;
+
+/// Absorption (per scene unit) of a medium, and fog's density: the inverse of the shortest
+/// length, beyond which everything is opaque anyway.
+pub const MAX_EXTINCTION: f32 = 1.0e12;
 
 /// An image's width or height, in pixels: file, flags, settings.
 pub const IMAGE_SIDE: RangeInclusive<u32> = 1..=16384;

@@ -52,7 +52,8 @@ impl Sampler {
         self.n * self.n
     }
 
-    /// The position of subsample `k` inside pixel (x, y), in [0, 1)².
+    /// The position of subsample `k` inside pixel (x, y), in [0, 1)². Past N² subsamples
+    /// the grid's cells are visited again in the same order, at new random places in them.
     #[inline]
     pub fn offset(&self, x: u32, y: u32, k: u32) -> (f32, f32) {
         self.row(y, k).offset(x)
@@ -66,7 +67,7 @@ impl Sampler {
             sampler: self,
             shift_seed: hash(y ^ 0x5bd1_e995),
             jitter_seed: hash(y ^ hash(k)),
-            cell: self.order[k as usize],
+            cell: self.order[(k % (self.n * self.n)) as usize],
         }
     }
 }
@@ -115,6 +116,79 @@ impl RowSampler<'_> {
     }
 }
 
+/// The random numbers one subsample draws beyond its place in the pixel (a point on the
+/// lens, on an area light, in a glossy lobe), one 2-D dimension after another.
+///
+/// Dimension d of subsample k of a pixel is point k' of the Sobol (0, 2)-sequence, where k'
+/// is k with its low 16 bits XORed by a hash of the pixel and d, and the point is then
+/// digitally shifted by another such hash. XORing the index maps every aligned block of
+/// 2^j indices (j ≤ 16) onto another, and each such block of the sequence is a (0, j, 2)-net,
+/// so every power-of-two prefix of a pixel's subsamples is stratified in each dimension;
+/// the hashes decorrelate the dimensions from each other, from the pixel's position in
+/// it and from the neighbouring pixels (no structured artefacts, only fine noise).
+#[derive(Clone, Copy, Debug)]
+pub struct SampleStream {
+    pixel: u32,
+    index: u32,
+    dimension: u32,
+}
+
+impl SampleStream {
+    /// The stream of subsample `k` of pixel (x, y). Costs nothing until a number is drawn.
+    #[inline]
+    pub fn new(x: u32, y: u32, k: u32) -> Self {
+        Self {
+            pixel: x.wrapping_mul(0x9e37_79b1) ^ y.wrapping_mul(0x85eb_ca77),
+            index: k,
+            dimension: 0,
+        }
+    }
+
+    /// The next dimension's point, in [0, 1)².
+    #[inline]
+    pub fn next_2d(&mut self) -> (f32, f32) {
+        let seed = hash(self.pixel ^ hash(self.dimension.wrapping_add(0x2545_f491)));
+        self.dimension += 1;
+        let (x, y) = sobol_point(self.index ^ (seed & 0xffff));
+        let (sx, sy) = (hash(seed), hash(seed ^ 0x68e3_1da4));
+        (unit(x ^ sx), unit(y ^ sy))
+    }
+}
+
+/// Shirley and Chiu's concentric map of the unit square onto the unit disc: it keeps areas
+/// and keeps nearby points nearby, so a stratified square stays stratified on the disc.
+#[inline]
+pub fn concentric_disc((u, v): (f32, f32)) -> (f32, f32) {
+    let (a, b) = (2.0 * u - 1.0, 2.0 * v - 1.0);
+    if a == 0.0 && b == 0.0 {
+        return (0.0, 0.0);
+    }
+    let quarter = std::f32::consts::FRAC_PI_4;
+    let (r, phi) = if a.abs() > b.abs() {
+        (a, quarter * (b / a))
+    } else {
+        (b, 2.0 * quarter - quarter * (a / b))
+    };
+    let (s, c) = phi.sin_cos();
+    (r * c, r * s)
+}
+
+/// Point `i` of the Sobol (0, 2)-sequence, as 32-bit fractions.
+#[inline]
+fn sobol_point(i: u32) -> (u32, u32) {
+    let x = i.reverse_bits(); // van der Corput: the sequence's first dimension
+    let mut y = 0u32;
+    let (mut v, mut j) = (1u32 << 31, i);
+    while j != 0 {
+        if j & 1 != 0 {
+            y ^= v;
+        }
+        j >>= 1;
+        v ^= v >> 1;
+    }
+    (x, y)
+}
+
 /// For N a power of two: the cells in the order of the first N² points of the Sobol
 /// (0, 2)-sequence, which visits each cell once. Every prefix of 2^k subsamples then has
 /// one subsample in each of the 2^k equal boxes of any shape 2^-a × 2^-b (a + b = k) that are
@@ -125,16 +199,7 @@ fn sobol_order(n: u32) -> Vec<(u32, u32)> {
     let bits = n.trailing_zeros();
     (0..n * n)
         .map(|i| {
-            let x = i.reverse_bits(); // van der Corput: the sequence's first dimension
-            let mut y = 0u32;
-            let (mut v, mut j) = (1u32 << 31, i);
-            while j != 0 {
-                if j & 1 != 0 {
-                    y ^= v;
-                }
-                j >>= 1;
-                v ^= v >> 1;
-            }
+            let (x, y) = sobol_point(i);
             if bits == 0 {
                 (0, 0)
             } else {
@@ -262,6 +327,91 @@ mod tests {
                     }
                 }
             }
+        }
+    }
+
+    /// Every power-of-two prefix of a pixel's draws in one dimension has one point in each
+    /// of the 2^k boxes of every shape 2^-a × 2^-b; other pixels and dimensions differ.
+    #[test]
+    fn stream_prefixes_are_stratified_and_decorrelated() {
+        for (px, py) in [(0, 0), (5, 3), (1023, 777)] {
+            for dim in 0..3 {
+                let draw = |k: u32| {
+                    let mut s = SampleStream::new(px, py, k);
+                    for _ in 0..dim {
+                        s.next_2d();
+                    }
+                    s.next_2d()
+                };
+                for k in [0u32, 3, 6, 8] {
+                    let points: Vec<(f32, f32)> = (0..1u32 << k).map(draw).collect();
+                    for a in 0..=k {
+                        let b = k - a;
+                        let mut boxes = vec![0u32; 1 << k];
+                        for &(x, y) in &points {
+                            assert!((0.0..1.0).contains(&x) && (0.0..1.0).contains(&y));
+                            let (bx, by) =
+                                ((x * (1 << a) as f32) as u32, (y * (1 << b) as f32) as u32);
+                            boxes[((by << a) + bx) as usize] += 1;
+                        }
+                        assert!(
+                            boxes.iter().all(|&c| c == 1),
+                            "pixel ({px}, {py}) dim {dim} 2^{k}"
+                        );
+                    }
+                }
+            }
+        }
+        let first = |x, y, dims: u32| {
+            let mut s = SampleStream::new(x, y, 0);
+            (0..dims).map(|_| s.next_2d()).last().unwrap()
+        };
+        assert_ne!(first(1, 2, 1), first(2, 1, 1));
+        assert_ne!(first(1, 2, 1), first(1, 2, 2));
+        // The first draws of neighbouring pixels look like uncorrelated noise: their mean
+        // over a 64×64 block is near 1/2 and its correlation between dimensions near 0.
+        let (mut sum, mut cross) = (0.0f64, 0.0f64);
+        for y in 0..64 {
+            for x in 0..64 {
+                let mut s = SampleStream::new(x, y, 0);
+                let (a, _) = s.next_2d();
+                let (b, _) = s.next_2d();
+                sum += a as f64;
+                cross += (a as f64 - 0.5) * (b as f64 - 0.5);
+            }
+        }
+        let n = 4096.0;
+        assert!((sum / n - 0.5).abs() < 0.02, "mean {}", sum / n);
+        assert!((cross / n).abs() < 0.01, "covariance {}", cross / n);
+    }
+
+    #[test]
+    fn concentric_map_keeps_area_and_stays_in_the_disc() {
+        // Equal areas of the square go to equal areas of the disc: the share of a 64×64
+        // grid of cell centres within radius r is r².
+        let mut inside_half = 0;
+        for i in 0..64 {
+            for j in 0..64 {
+                let (x, y) = concentric_disc(((i as f32 + 0.5) / 64.0, (j as f32 + 0.5) / 64.0));
+                let r2 = x * x + y * y;
+                assert!(r2 <= 1.0 + 1e-6);
+                inside_half += (r2 < 0.25) as u32;
+            }
+        }
+        let share = inside_half as f32 / 4096.0;
+        assert!((share - 0.25).abs() < 0.01, "{share}");
+    }
+
+    #[test]
+    fn past_the_grid_cells_repeat_with_new_jitter() {
+        let s = Sampler::new(2, SampleLayout::Stratified);
+        for k in 0..4 {
+            let (a, b) = (s.offset(7, 9, k), s.offset(7, 9, k + 4));
+            assert_eq!(
+                ((a.0 * 2.0) as u32, (a.1 * 2.0) as u32),
+                ((b.0 * 2.0) as u32, (b.1 * 2.0) as u32)
+            );
+            assert_ne!(a, b);
         }
     }
 

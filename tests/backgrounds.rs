@@ -22,7 +22,11 @@ fn look(scene: &Scene, dir: Vec3) -> Vec3 {
     let prepared = PreparedScene::new(scene);
     let mut integrator = Integrator::new(&prepared, 0.0);
     integrator
-        .trace_primary(Reach::After(0.0), || Ray::new(Vec3::ZERO, dir.normalize()))
+        .trace_primary(
+            Reach::After(0.0),
+            || Ray::new(Vec3::ZERO, dir.normalize()),
+            prism::sampler::SampleStream::new(0, 0, 0),
+        )
         .color
 }
 

@@ -755,12 +755,16 @@ fn the_longest_ray_chain_spends_the_budget_within_a_small_stack() {
         .stack_size(prism::limits::RENDER_STACK_BYTES / 2)
         .spawn(move || {
             let mut integrator = Integrator::new(&prepared, 0.0);
-            let sample = integrator.trace_primary(prism::accel::Reach::After(0.0), || {
-                Ray::new(
-                    glam::Vec3::ZERO,
-                    glam::Vec3::new(0.01, 0.02, -1.0).normalize(),
-                )
-            });
+            let sample = integrator.trace_primary(
+                prism::accel::Reach::After(0.0),
+                || {
+                    Ray::new(
+                        glam::Vec3::ZERO,
+                        glam::Vec3::new(0.01, 0.02, -1.0).normalize(),
+                    )
+                },
+                prism::sampler::SampleStream::new(0, 0, 0),
+            );
             assert!(sample.color.is_finite());
             integrator.counts
         })

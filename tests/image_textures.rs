@@ -39,7 +39,11 @@ fn at(scene: &Scene, x: f32, y: f32) -> Vec3 {
     let mut integrator = Integrator::new(&prepared, 0.0);
     let dir = Vec3::new(x, y, -5.0).normalize();
     integrator
-        .trace_primary(Reach::After(0.0), || Ray::new(Vec3::ZERO, dir))
+        .trace_primary(
+            Reach::After(0.0),
+            || Ray::new(Vec3::ZERO, dir),
+            prism::sampler::SampleStream::new(0, 0, 0),
+        )
         .color
 }
 

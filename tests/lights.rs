@@ -5,6 +5,7 @@ use glam::Vec3;
 use prism::accel::Reach;
 use prism::geometry::Ray;
 use prism::integrator::Integrator;
+use prism::sampler::SampleStream;
 use prism::scene::{PreparedScene, Scene, parse_scene};
 use std::path::Path;
 
@@ -29,7 +30,11 @@ fn floor_at(scene: &Scene, p: Vec3) -> Vec3 {
     let p = p - scene.origin.as_vec3();
     let eye = p + Vec3::new(0.0, 0.5, 0.0);
     integrator
-        .trace_primary(Reach::After(0.0), || Ray::new(eye, Vec3::NEG_Y))
+        .trace_primary(
+            Reach::After(0.0),
+            || Ray::new(eye, Vec3::NEG_Y),
+            SampleStream::new(0, 0, 0),
+        )
         .color
 }
 
@@ -123,8 +128,40 @@ fn an_inverse_square_scene_scaled_draws_the_same_image() {
 fn every_bad_light_is_refused_with_its_line() {
     let cases = [
         (
-            "type = \"spot\" # <-\nposition = [0, 5, 0]",
+            "type = \"laser\" # <-\nposition = [0, 5, 0]",
             "unknown light type",
+        ),
+        (
+            "type = \"spot\" # <-\nposition = [0, 5, 0]\ndirection = [0, -1, 0]",
+            "needs `angle`",
+        ),
+        (
+            "type = \"spot\"\nposition = [0, 5, 0]\ndirection = [0, -1, 0]\nangle = 200 # <-",
+            "`angle` must lie in",
+        ),
+        (
+            "type = \"spot\"\nposition = [0, 5, 0]\ndirection = [0, -1, 0]\nangle = 20\nsoftness = 2 # <-",
+            "`softness` must lie in",
+        ),
+        (
+            "type = \"area\"\ncorner = [0, 5, 0]\nedge_u = [1, 0, 0]\nedge_v = [2, 0, 0] # <-",
+            "must span a rectangle",
+        ),
+        (
+            "type = \"area\" # <-\ncorner = [0, 5, 0]\nedge_u = [1, 0, 0]",
+            "needs `edge_v`",
+        ),
+        (
+            "type = \"area\"\ncorner = [0, 5, 0]\nedge_u = [1, 0, 0]\nedge_v = [0, 0, 1]\nradius = 1 # <-",
+            "`radius` does not apply to an area light",
+        ),
+        (
+            "type = \"sphere\"\nposition = [0, 5, 0]\nradius = 0 # <-",
+            "`radius` must be greater than zero",
+        ),
+        (
+            "type = \"sphere\"\nposition = [0, 5, 0]\nradius = 1\nangle = 3 # <-",
+            "`angle` does not apply to a sphere light",
         ),
         ("color = [1, 1, 1] # <-", "needs `position`"),
         (

@@ -237,7 +237,11 @@ fn smooth_shading_does_not_leak_light() {
             };
             let surface = accel.surface(&q, &hit);
             let color = integrator
-                .trace_primary(Reach::After(0.0), || Ray::new(eye, Vec3::Y))
+                .trace_primary(
+                    Reach::After(0.0),
+                    || Ray::new(eye, Vec3::Y),
+                    prism::sampler::SampleStream::new(0, 0, 0),
+                )
                 .color;
             assert!(color.is_finite());
             if surface.normal.y < 0.0 {

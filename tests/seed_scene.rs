@@ -27,9 +27,11 @@ fn look_from(scene: &Scene, eye: Vec3, target: Vec3) -> Vec3 {
     let prepared = PreparedScene::new(scene);
     let mut integrator = Integrator::new(&prepared, 0.0);
     integrator
-        .trace_primary(Reach::After(0.0), || {
-            Ray::new(eye, (target - eye).normalize())
-        })
+        .trace_primary(
+            Reach::After(0.0),
+            || Ray::new(eye, (target - eye).normalize()),
+            prism::sampler::SampleStream::new(0, 0, 0),
+        )
         .color
 }
 

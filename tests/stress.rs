@@ -495,7 +495,7 @@ proptest! {
         let c = integrator
             .trace_primary(prism::accel::Reach::After(0.0), || {
                 Ray::new(Vec3::new(eye.0, eye.1, eye.2), dir)
-            })
+            }, prism::sampler::SampleStream::new(0, 0, 0))
             .color;
         prop_assert!(c.is_finite(), "{c}");
     }

@@ -1,6 +1,8 @@
-//! Light sources: what kind of light, how bright, and how it falls off.
+//! Light sources: what kind of light, how bright, how it falls off, and for lights with an
+//! area, where on them a shadow ray ends.
 
-use glam::Vec3;
+use crate::geometry::{Ray, Sphere};
+use glam::{Vec3, Vec3A};
 
 /// A light: its kind and where it shines from, and its colour.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -23,11 +25,215 @@ pub enum LightKind {
         /// How it fades with distance.
         falloff: Falloff,
     },
+    /// Light from one point into a cone.
+    Spot {
+        /// Where the light is, relative to the scene's origin.
+        position: Vec3,
+        /// How it fades with distance.
+        falloff: Falloff,
+        /// Where it shines.
+        cone: SpotCone,
+    },
     /// Parallel light from infinitely far away, like the sun's.
     Directional {
         /// The unit direction the light travels in (from the sky towards the scene).
         direction: Vec3,
     },
+    /// Light from a surface, sampled at one point of it per subsample: soft shadows.
+    Area {
+        /// The emitting surface.
+        shape: AreaShape,
+        /// How the light of each sampled point fades with its distance.
+        falloff: Falloff,
+        /// Whether rays from the camera (and mirrors) see the surface, glowing in the
+        /// light's colour.
+        visible: bool,
+    },
+}
+
+/// The surface of an area light. As POV-Ray's `area_light`, the light's colour is the whole
+/// light's: a point that sees all of the surface is lit as by a point light of that colour at
+/// the sampled points.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum AreaShape {
+    /// The parallelogram `corner + u·edge_u + v·edge_v`, u and v in [0, 1].
+    Rectangle {
+        /// One corner.
+        corner: Vec3,
+        /// The edge from it along u.
+        edge_u: Vec3,
+        /// The edge from it along v.
+        edge_v: Vec3,
+    },
+    /// A sphere. Seen from a shading point it is sampled over its great disc facing that
+    /// point (POV-Ray's `area_light` with `circular` and `orient`), so POV-Ray can check it.
+    Sphere {
+        /// Its centre, relative to the scene's origin.
+        center: Vec3,
+        /// Its radius.
+        radius: f32,
+    },
+}
+
+impl AreaShape {
+    /// The point of the surface that sample `u` (in [0, 1)²) stands for, as seen from `p`:
+    /// stratified samples stay stratified over the surface.
+    #[inline]
+    pub fn sample(&self, p: Vec3A, u: (f32, f32)) -> Vec3A {
+        match *self {
+            AreaShape::Rectangle {
+                corner,
+                edge_u,
+                edge_v,
+            } => Vec3A::from(corner) + Vec3A::from(edge_u) * u.0 + Vec3A::from(edge_v) * u.1,
+            AreaShape::Sphere { center, radius } => {
+                let c = Vec3A::from(center);
+                let w = crate::numerics::try_normalize((p - c).into()).unwrap_or(Vec3::Z);
+                let (t, b) = crate::numerics::orthonormal_basis(w);
+                let (dx, dy) = crate::sampler::concentric_disc(u);
+                c + (Vec3A::from(t) * dx + Vec3A::from(b) * dy) * radius
+            }
+        }
+    }
+
+    /// Where the ray first meets the surface in (t_min, t_max), if it does.
+    #[inline]
+    pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<f32> {
+        match *self {
+            AreaShape::Rectangle {
+                corner,
+                edge_u,
+                edge_v,
+            } => {
+                let (corner, eu, ev) = (
+                    Vec3A::from(corner),
+                    Vec3A::from(edge_u),
+                    Vec3A::from(edge_v),
+                );
+                let n = eu.cross(ev);
+                let denom = ray.dir.dot(n);
+                if denom == 0.0 {
+                    return None;
+                }
+                let t = (corner - ray.origin).dot(n) / denom;
+                if !(t > t_min && t < t_max) {
+                    return None;
+                }
+                // The hit's coordinates along the edges, by the dual basis of the plane.
+                let d = ray.origin + ray.dir * t - corner;
+                let nn = n.length_squared();
+                let u = d.cross(ev).dot(n) / nn;
+                let v = eu.cross(d).dot(n) / nn;
+                ((0.0..=1.0).contains(&u) && (0.0..=1.0).contains(&v)).then_some(t)
+            }
+            AreaShape::Sphere { center, radius } => {
+                Sphere::new(center, radius).intersect_after(ray, t_min, t_max)
+            }
+        }
+    }
+
+    /// A point inside the surface's extent: its centre.
+    pub fn center(&self) -> Vec3 {
+        match *self {
+            AreaShape::Rectangle {
+                corner,
+                edge_u,
+                edge_v,
+            } => corner + (edge_u + edge_v) * 0.5,
+            AreaShape::Sphere { center, .. } => center,
+        }
+    }
+
+    /// Half the surface's widest extent: the size the viewer's panel edits.
+    pub fn size(&self) -> f32 {
+        match *self {
+            AreaShape::Rectangle { edge_u, edge_v, .. } => {
+                (edge_u + edge_v).length().max((edge_u - edge_v).length()) * 0.5
+            }
+            AreaShape::Sphere { radius, .. } => radius,
+        }
+    }
+
+    /// The same surface about the same centre, `factor` times as large.
+    pub fn resized(&self, factor: f32) -> AreaShape {
+        match *self {
+            AreaShape::Rectangle { edge_u, edge_v, .. } => {
+                let c = self.center();
+                let (edge_u, edge_v) = (edge_u * factor, edge_v * factor);
+                AreaShape::Rectangle {
+                    corner: c - (edge_u + edge_v) * 0.5,
+                    edge_u,
+                    edge_v,
+                }
+            }
+            AreaShape::Sphere { center, radius } => AreaShape::Sphere {
+                center,
+                radius: radius * factor,
+            },
+        }
+    }
+
+    /// The same surface with its lengths scaled by `scale` about the origin.
+    pub fn scaled(&self, scale: f32) -> AreaShape {
+        match *self {
+            AreaShape::Rectangle {
+                corner,
+                edge_u,
+                edge_v,
+            } => AreaShape::Rectangle {
+                corner: corner * scale,
+                edge_u: edge_u * scale,
+                edge_v: edge_v * scale,
+            },
+            AreaShape::Sphere { center, radius } => AreaShape::Sphere {
+                center: center * scale,
+                radius: radius * scale,
+            },
+        }
+    }
+}
+
+/// A spotlight's cone: full light within `angle·(1 − softness)` of its axis, fading
+/// smoothly to none at `angle`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SpotCone {
+    /// The unit direction of the cone's axis.
+    pub direction: Vec3,
+    /// The angle between the axis and the cone's edge, in degrees.
+    pub angle: f32,
+    /// The fraction of `angle`, from its edge inwards, over which the light fades.
+    pub softness: f32,
+    cos_outer: f32,
+    cos_inner: f32,
+}
+
+impl SpotCone {
+    /// A cone about unit `direction` of half-angle `angle` degrees (0..=90) whose edge fades over
+    /// `softness` (0..=1) of it.
+    pub fn new(direction: Vec3, angle: f32, softness: f32) -> Self {
+        let outer = angle.to_radians();
+        Self {
+            direction,
+            angle,
+            softness,
+            cos_outer: outer.cos(),
+            cos_inner: (outer * (1.0 - softness)).cos(),
+        }
+    }
+
+    /// The share of the light sent along unit direction `w` (from the light).
+    #[inline]
+    pub fn gain(&self, w: Vec3A) -> f32 {
+        let c = w.dot(self.direction.into());
+        if c >= self.cos_inner {
+            1.0
+        } else if c <= self.cos_outer {
+            0.0
+        } else {
+            let x = (c - self.cos_outer) / (self.cos_inner - self.cos_outer);
+            x * x * (3.0 - 2.0 * x)
+        }
+    }
 }
 
 /// How a point light's light fades with distance.
@@ -71,18 +277,141 @@ impl Light {
         }
     }
 
-    /// A point light's position; None for a directional light.
+    /// The one point every shadow ray toward the light ends at (a point light's or a
+    /// spotlight's position); None for a directional or an area light.
     pub fn position(&self) -> Option<Vec3> {
         match self.kind {
-            LightKind::Point { position, .. } => Some(position),
-            LightKind::Directional { .. } => None,
+            LightKind::Point { position, .. } | LightKind::Spot { position, .. } => Some(position),
+            LightKind::Directional { .. } | LightKind::Area { .. } => None,
         }
+    }
+
+    /// Where the light is: its position or its surface's centre; None for a directional light.
+    pub fn center(&self) -> Option<Vec3> {
+        match self.kind {
+            LightKind::Area { shape, .. } => Some(shape.center()),
+            _ => self.position(),
+        }
+    }
+
+    /// The surface that rays from the camera see glowing, if the light has one and shows it.
+    #[inline]
+    pub fn emitter(&self) -> Option<AreaShape> {
+        match self.kind {
+            LightKind::Area {
+                shape,
+                visible: true,
+                ..
+            } => Some(shape),
+            _ => None,
+        }
+    }
+
+    /// The same light in a scene scaled by `scale` about the origin: positions and sizes scale,
+    /// and inverse-square intensity with the square, so that what it lights stays as bright.
+    pub fn scaled(&self, scale: f32) -> Light {
+        let falloff = |f: Falloff| match f {
+            Falloff::None => Falloff::None,
+            Falloff::InverseSquare { intensity } => Falloff::InverseSquare {
+                intensity: intensity * scale * scale,
+            },
+        };
+        let kind = match self.kind {
+            LightKind::Point {
+                position,
+                falloff: f,
+            } => LightKind::Point {
+                position: position * scale,
+                falloff: falloff(f),
+            },
+            LightKind::Spot {
+                position,
+                falloff: f,
+                cone,
+            } => LightKind::Spot {
+                position: position * scale,
+                falloff: falloff(f),
+                cone,
+            },
+            kind @ LightKind::Directional { .. } => kind,
+            LightKind::Area {
+                shape,
+                falloff: f,
+                visible,
+            } => LightKind::Area {
+                shape: shape.scaled(scale),
+                falloff: falloff(f),
+                visible,
+            },
+        };
+        Light { kind, ..*self }
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn sphere_samples_lie_on_the_disc_facing_the_point() {
+        let shape = AreaShape::Sphere {
+            center: Vec3::new(1.0, 2.0, 3.0),
+            radius: 0.5,
+        };
+        let p = Vec3A::new(4.0, -2.0, 3.0);
+        let w = (p - Vec3A::new(1.0, 2.0, 3.0)).normalize();
+        for u in [(0.1, 0.2), (0.9, 0.5), (0.5, 0.5), (0.0, 0.99)] {
+            let q = shape.sample(p, u) - Vec3A::new(1.0, 2.0, 3.0);
+            assert!(q.dot(w).abs() < 1e-5 && q.length() <= 0.5 + 1e-5, "{q}");
+        }
+    }
+
+    #[test]
+    fn rectangle_hits_inside_and_misses_outside() {
+        let shape = AreaShape::Rectangle {
+            corner: Vec3::new(-1.0, 5.0, -1.0),
+            edge_u: Vec3::new(2.0, 0.0, 0.0),
+            edge_v: Vec3::new(0.0, 0.0, 2.0),
+        };
+        let up = |x: f32, z: f32| Ray::new(Vec3A::new(x, 0.0, z), Vec3A::Y);
+        assert_eq!(
+            shape.intersect(&up(0.0, 0.0), 0.0, f32::INFINITY),
+            Some(5.0)
+        );
+        assert_eq!(
+            shape.intersect(&up(0.99, -0.99), 0.0, f32::INFINITY),
+            Some(5.0)
+        );
+        assert_eq!(shape.intersect(&up(1.01, 0.0), 0.0, f32::INFINITY), None);
+        assert_eq!(
+            shape.intersect(&up(0.0, 0.0), 0.0, 4.0),
+            None,
+            "beyond t_max"
+        );
+        assert_eq!(shape.center(), Vec3::new(0.0, 5.0, 0.0));
+        assert!((shape.resized(2.0).size() - 2.0 * shape.size()).abs() < 1e-6);
+    }
+
+    #[test]
+    fn spot_cone_is_full_inside_and_dark_outside() {
+        let cone = SpotCone::new(Vec3::NEG_Y, 30.0, 0.5);
+        let at = |deg: f32| {
+            let (s, c) = deg.to_radians().sin_cos();
+            cone.gain(Vec3A::new(s, -c, 0.0))
+        };
+        assert_eq!(at(0.0), 1.0);
+        assert_eq!(at(14.9), 1.0);
+        assert_eq!(at(30.1), 0.0);
+        // Between, smoothstep in the cosine.
+        let x = (22.5f32.to_radians().cos() - 30f32.to_radians().cos())
+            / (15f32.to_radians().cos() - 30f32.to_radians().cos());
+        let mid = at(22.5);
+        assert!((mid - x * x * (3.0 - 2.0 * x)).abs() < 1e-5, "{mid}");
+        assert!(at(20.0) > at(25.0));
+        let hard = SpotCone::new(Vec3::NEG_Y, 30.0, 0.0);
+        assert_eq!(hard.gain(Vec3A::new(0.49, -0.87, 0.0).normalize()), 1.0);
+        assert_eq!(hard.gain(Vec3A::new(0.51, -0.86, 0.0).normalize()), 0.0);
+    }
 
     #[test]
     fn inverse_square_falls_off_with_the_square_and_stays_finite_at_the_light() {

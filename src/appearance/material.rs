@@ -35,6 +35,16 @@ pub struct Material {
     /// angle) rather than the fixed `reflectivity` and `transparency`; false for the
     /// seed's Whitted materials.
     pub fresnel: bool,
+    /// How far mirror reflection spreads into a glossy lobe: 0 is a perfect mirror, 1 nearly
+    /// diffuse (the GGX microfacet roughness √α, one sampled direction per subsample).
+    pub roughness: f32,
+    /// Beer–Lambert absorption of the inside per scene unit, per channel: light that
+    /// travels d inside keeps exp(−absorption·d) of itself. Zero for clear media.
+    pub absorption: Vec3,
+    /// A metal's reflectance at normal incidence, per channel (gold, copper): the mirror
+    /// reflection is tinted by Schlick's Fresnel curve from it, rising to white at grazing
+    /// angles. None for the seed's untinted mirrors.
+    pub conductor: Option<Vec3>,
 }
 
 impl Default for Material {
@@ -50,6 +60,9 @@ impl Default for Material {
             eta: None,
             emission: Vec3::ZERO,
             fresnel: false,
+            roughness: 0.0,
+            absorption: Vec3::ZERO,
+            conductor: None,
         }
     }
 }
@@ -79,6 +92,14 @@ pub fn fresnel_reflectance(cos_i: f32, eta_ratio: f32) -> f32 {
     let rs = (eta_ratio * cos_i - cos_t) / (eta_ratio * cos_i + cos_t);
     let rp = (cos_i - eta_ratio * cos_t) / (cos_i + eta_ratio * cos_t);
     (0.5 * (rs * rs + rp * rp)).clamp(0.0, 1.0)
+}
+
+/// Schlick's approximation of a conductor's Fresnel reflectance at `cos_i` from the normal,
+/// from its reflectance `f0` at normal incidence.
+#[inline]
+pub fn schlick_reflectance(cos_i: f32, f0: Vec3A) -> Vec3A {
+    let m = (1.0 - cos_i.clamp(0.0, 1.0)).powi(5);
+    f0 + (Vec3A::ONE - f0) * m
 }
 
 /// Mirror reflection of direction `d` about unit normal `n`.

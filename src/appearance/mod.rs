@@ -2,13 +2,15 @@
 //! apart from geometry so that an edit changes a table in place and rebuilds nothing.
 
 mod background;
+mod fog;
 mod light;
 mod material;
 mod texture;
 
 pub use background::Background;
-pub use light::{Falloff, Light, LightKind, MAX_FALLOFF_GAIN};
-pub use material::{Material, fresnel_reflectance, reflect, refract};
+pub use fog::{Fog, FogKind};
+pub use light::{AreaShape, Falloff, Light, LightKind, MAX_FALLOFF_GAIN, SpotCone};
+pub use material::{Material, fresnel_reflectance, reflect, refract, schlick_reflectance};
 pub use texture::{ImageTexture, Texture, TextureError, UvTransform};
 
 use glam::{Vec3, Vec3A};
@@ -24,6 +26,9 @@ pub struct Appearance {
     ambient: Vec3A,
     background: Background,
     max_depth: u32,
+    fog: Option<Fog>,
+    /// Whether some light shows its surface to rays (`Light::emitter`).
+    any_emitter: bool,
 }
 
 /// What one crossing of each object's surface lets through to a shadow ray.
@@ -100,11 +105,19 @@ impl Appearance {
                 ShadowFilters::new(&materials, casts_shadow)
             },
             materials,
+            any_emitter: lights.iter().any(|l| l.emitter().is_some()),
             lights,
             ambient: ambient.into(),
             background,
             max_depth,
+            fog: None,
         }
+    }
+
+    /// The same appearance with fog (or none).
+    pub fn with_fog(mut self, fog: Option<Fog>) -> Self {
+        self.fog = fog;
+        self
     }
 
     /// Object `object`'s material.
@@ -131,6 +144,38 @@ impl Appearance {
     /// If there is no such light.
     pub fn set_light_color(&mut self, light: usize, color: Vec3) {
         self.lights[light].color = color;
+    }
+
+    /// Replaces light `light` by one with the same shadow-ray end point (`Light::position`:
+    /// what the light buffers were built around): a colour, a cone, an area light's surface.
+    ///
+    /// # Panics
+    /// If there is no such light, or the new one moves the point.
+    pub fn set_light(&mut self, light: usize, new: Light) {
+        assert_eq!(
+            self.lights[light].position(),
+            new.position(),
+            "light {light} moved"
+        );
+        self.lights[light] = new;
+        self.any_emitter = self.lights.iter().any(|l| l.emitter().is_some());
+    }
+
+    /// Sets the fog (None: clear air).
+    pub fn set_fog(&mut self, fog: Option<Fog>) {
+        self.fog = fog;
+    }
+
+    /// The fog, if any.
+    #[inline]
+    pub fn fog(&self) -> Option<&Fog> {
+        self.fog.as_ref()
+    }
+
+    /// Whether some light shows its surface to rays.
+    #[inline]
+    pub fn any_emitter(&self) -> bool {
+        self.any_emitter
     }
 
     /// Sets the ambient light.

@@ -70,6 +70,7 @@ pub fn sphere_field(n: usize) -> Scene {
             Vec3::new(side, side * 2.0, side * 0.5),
             Vec3::ONE,
         )],
+        fog: None,
         objects,
     }
 }

@@ -23,6 +23,16 @@ pub struct RenderArgs {
     /// Anti-aliasing level N: N×N subsamples per pixel, 1..8 (default: the scene's).
     #[arg(long, value_parser = super::within(prism::limits::AA))]
     pub aa: Option<u32>,
+    /// Subsamples per pixel, 1..65536, when not N×N (default: the scene's `samples`, else
+    /// N×N): soft shadows, depth of field and glossy reflection converge with more.
+    #[arg(long, value_parser = super::within(prism::limits::SAMPLES))]
+    pub samples: Option<u32>,
+    /// The lens's diameter in scene units (0: a pinhole; default: the scene's `aperture`).
+    #[arg(long, allow_negative_numbers = true)]
+    pub aperture: Option<f32>,
+    /// The distance in focus, along the view axis (default: the scene's `focus_distance`).
+    #[arg(long, allow_negative_numbers = true)]
+    pub focus_distance: Option<f32>,
     /// Output PNG file (a symbolic link's target is replaced; a device or FIFO is written
     /// to directly).
     #[arg(long, short, default_value = "render.png")]
@@ -64,7 +74,17 @@ pub fn run(args: RenderArgs) -> Result<()> {
     if let Some(depth) = args.max_depth {
         scene.render.max_depth = depth;
     }
+    if args.aperture.is_some() || args.focus_distance.is_some() {
+        let mut camera = scene.camera;
+        camera.aperture = args.aperture.unwrap_or(camera.aperture);
+        camera.focus_distance = args.focus_distance.unwrap_or(camera.focus_distance);
+        camera.check().map_err(prism::render::SettingsError::Lens)?;
+        scene.camera = camera;
+    }
     let mut settings = RenderSettings::for_scene(&scene.render, args.width, args.height, args.aa)?;
+    if let Some(n) = args.samples {
+        settings.samples = Some(n);
+    }
     settings.layout = match args.layout {
         Layout::Stratified => SampleLayout::Stratified,
         Layout::Grid => SampleLayout::Grid,

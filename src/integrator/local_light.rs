@@ -35,14 +35,28 @@ impl Integrator<'_> {
         let accel = self.accel();
         let filters = self.appearance.shadow_filters();
         for (light_index, light) in self.appearance.lights().iter().enumerate() {
-            // The direction to the light (to a point light, unnormalised) and how it fades.
-            let (to_light, point, falloff) = match light.kind {
+            // The direction to the light (to a point of it, unnormalised), how it fades, and
+            // a spotlight's cone.
+            let (to_light, point, falloff, cone) = match light.kind {
                 LightKind::Point { position, falloff } => {
                     let position = Vec3A::from(position);
-                    (position - p, Some(position), falloff)
+                    (position - p, Some(position), falloff, None)
+                }
+                LightKind::Spot {
+                    position,
+                    falloff,
+                    cone,
+                } => {
+                    let position = Vec3A::from(position);
+                    (position - p, Some(position), falloff, Some(cone))
                 }
                 LightKind::Directional { direction } => {
-                    (-Vec3A::from(direction), None, Falloff::None)
+                    (-Vec3A::from(direction), None, Falloff::None, None)
+                }
+                LightKind::Area { shape, falloff, .. } => {
+                    // One point of the surface per subsample: the shadow ray ends there.
+                    let sampled = shape.sample(p, self.stream.next_2d());
+                    (sampled - p, Some(sampled), falloff, None)
                 }
             };
             // A light behind this side of the true surface, or of the shading normal,
@@ -53,6 +67,13 @@ impl Integrator<'_> {
             }
             let distance = to_light.length();
             let l = to_light / distance;
+            let spot = match cone {
+                Some(cone) => cone.gain(-l),
+                None => 1.0,
+            };
+            if spot == 0.0 {
+                continue;
+            }
             let origin = self.leave(&at.surface, n, l);
             self.counts.shadow += 1;
             let leaving = ((at.entering && object.convex) || object.flat).then_some(at.object);
@@ -69,6 +90,9 @@ impl Integrator<'_> {
             // No falloff multiplies by exactly one: skipped, it costs nothing.
             if falloff != Falloff::None {
                 lit *= falloff.gain(distance);
+            }
+            if cone.is_some() {
+                lit *= spot;
             }
             diffuse += lit * base * (material.diffuse * n_dot / distance);
             if material.specular > 0.0 {

@@ -12,9 +12,10 @@ mod transmission;
 pub use signature::Signature;
 
 use crate::accel::{Accelerator, Hit, Reach};
-use crate::appearance::{Appearance, Material, fresnel_reflectance};
+use crate::appearance::{Appearance, Material, fresnel_reflectance, schlick_reflectance};
 use crate::geometry::{Ray, RayQuery, SurfacePoint};
 use crate::numerics::offset_ray_origin;
+use crate::sampler::SampleStream;
 use crate::scene::{Geometry, PreparedScene};
 use glam::{Vec3, Vec3A};
 use path::Path;
@@ -87,9 +88,12 @@ pub struct Integrator<'a> {
     pub counts: RayCounts,
     /// What the primary ray being traced has met.
     signature: Signature,
-    /// The background's colour when it is the same in every direction: then a primary ray
-    /// known to hit nothing needs no ray built.
+    /// The background's colour when it is the same in every direction and nothing else
+    /// (fog, a glowing light) lies along a ray: then a primary ray known to hit nothing needs
+    /// no ray built.
     solid_background: Option<Vec3A>,
+    /// The random numbers of the subsample being traced (lens, area lights, glossy lobes).
+    stream: SampleStream,
 }
 
 /// What shading knows at a hit.
@@ -111,6 +115,15 @@ struct Shading<'s> {
     ns: Vec3A,
 }
 
+impl Shading<'_> {
+    /// The cosine between the arriving ray and the shading normal.
+    #[inline]
+    fn cos_incidence(&self) -> f32 {
+        let d = self.q.ray.dir;
+        -d.dot(self.ns) / d.length()
+    }
+}
+
 impl<'a> Integrator<'a> {
     /// An integrator that skips secondary rays weighted below `min_weight`.
     pub fn new(scene: &'a PreparedScene, min_weight: f32) -> Self {
@@ -121,7 +134,12 @@ impl<'a> Integrator<'a> {
             min_weight,
             counts: RayCounts::default(),
             signature: Signature::default(),
-            solid_background: scene.appearance.background().solid(),
+            solid_background: scene
+                .appearance
+                .background()
+                .solid()
+                .filter(|_| scene.appearance.fog().is_none() && !scene.appearance.any_emitter()),
+            stream: SampleStream::new(0, 0, 0),
         }
     }
 
@@ -150,24 +168,25 @@ impl<'a> Integrator<'a> {
 
     /// The colour seen along a primary ray (`ray()`, of unit direction) and its signature;
     /// `reach` is what the camera view knows it can hit first
-    /// ([`crate::accel::CameraView::reach`]). A ray known to hit nothing is not built,
-    /// unless the background varies with direction.
+    /// ([`crate::accel::CameraView::reach`]), `stream` the subsample's random numbers. A ray
+    /// known to hit nothing is not built, unless the background varies with direction or
+    /// something else lies along it.
     #[inline]
-    pub fn trace_primary(&mut self, reach: Reach, ray: impl FnOnce() -> Ray) -> Sample {
+    pub fn trace_primary(
+        &mut self,
+        reach: Reach,
+        ray: impl FnOnce() -> Ray,
+        stream: SampleStream,
+    ) -> Sample {
         self.counts.primary += 1;
         self.signature = Signature::default();
+        self.stream = stream;
         let color = match (reach, self.solid_background) {
             (Reach::Among([]), Some(background)) => {
                 self.signature.miss();
                 background
             }
-            (reach, _) => {
-                let q = RayQuery::new(ray());
-                match self.accel().nearest_hit(&q, reach) {
-                    Some(hit) => self.shade(&q, &hit, Path::PRIMARY),
-                    None => self.miss(q.ray.dir),
-                }
-            }
+            (reach, _) => self.trace_reaching(&RayQuery::new(ray()), 0.0, reach, Path::PRIMARY),
         };
         Sample {
             color: color.into(),
@@ -183,9 +202,66 @@ impl<'a> Integrator<'a> {
             Some(solid) => Reach::Inside { solid, t_min },
             None => Reach::After(t_min),
         };
-        match self.accel().nearest_hit(q, reach) {
-            Some(hit) => self.shade(q, &hit, path),
-            None => self.miss(q.ray.dir),
+        self.trace_reaching(q, t_min, reach, path)
+    }
+
+    /// The colour along `q` from `t_min` on, where `reach` says what it can hit: what it
+    /// meets (a surface, a glowing light, or the background), seen through the medium it
+    /// travels in (absorption inside an object, fog in the air).
+    #[inline]
+    fn trace_reaching(&mut self, q: &RayQuery, t_min: f32, reach: Reach, path: Path) -> Vec3A {
+        let hit = self.accel().nearest_hit(q, reach);
+        let t_end = hit.map_or(f32::INFINITY, |h| h.shape.t);
+        let emitter = if self.appearance.any_emitter() {
+            self.emitter_along(&q.ray, t_min, t_end)
+        } else {
+            None
+        };
+        let (color, t_end) = match (emitter, hit) {
+            (Some((color, t)), _) => (color, t),
+            (None, Some(hit)) => (self.shade(q, &hit, path), t_end),
+            (None, None) => (self.miss(q.ray.dir), t_end),
+        };
+        self.through_medium(color, q, t_end - t_min, path)
+    }
+
+    /// The nearest glowing light surface along `ray` in (t_min, t_max): its colour and
+    /// distance.
+    fn emitter_along(&mut self, ray: &Ray, t_min: f32, t_max: f32) -> Option<(Vec3A, f32)> {
+        let mut nearest = None;
+        let mut t_max = t_max;
+        for (index, light) in self.appearance.lights().iter().enumerate() {
+            if let Some(shape) = light.emitter()
+                && let Some(t) = shape.intersect(ray, t_min, t_max)
+            {
+                t_max = t;
+                nearest = Some((index, Vec3A::from(light.color), t));
+            }
+        }
+        let (index, color, t) = nearest?;
+        self.signature.surface(u32::MAX - index as u32, 0);
+        Some((color, t))
+    }
+
+    /// `color`, seen from `dt` (in units of the ray's direction) along `q` through the
+    /// medium the ray travels in: an object's absorption, or in the air, the fog.
+    #[inline]
+    fn through_medium(&self, color: Vec3A, q: &RayQuery, dt: f32, path: Path) -> Vec3A {
+        match path.media.current() {
+            Some(object) => {
+                let absorption = self.appearance.material(object).absorption;
+                if absorption == Vec3::ZERO {
+                    return color;
+                }
+                let d = dt * q.ray.dir.length();
+                // No light crosses an endless absorbing medium (an open mesh seen from inside).
+                let kept = (-Vec3A::from(absorption) * d).exp();
+                color * Vec3A::select(kept.cmpeq(kept), kept, Vec3A::ZERO)
+            }
+            None => match self.appearance.fog() {
+                Some(fog) => fog.apply(color, dt * q.ray.dir.length()),
+                None => color,
+            },
         }
     }
 
@@ -227,7 +303,7 @@ impl<'a> Integrator<'a> {
 
         // Reflection and refraction spend a bounce; a straight crossing does not.
         let bounces_left = path.depth < self.appearance.max_depth();
-        let (reflectivity, transparency) = self.split(&at);
+        let (reflectivity, transparency) = self.split(&at, path);
         let reflects = self.reflects(reflectivity, path, bounces_left);
         let transmits = self.transmits(material, transparency, path, bounces_left);
         // The rays this hit spawns share what is left of the sample's budget evenly; when
@@ -238,7 +314,11 @@ impl<'a> Integrator<'a> {
         }
         let share = (path.budget - children) / children;
         if reflects {
-            color += self.reflection(&at, path.bounce(reflectivity, share)) * reflectivity;
+            let reflected = self.reflection(&at, path.bounce(reflectivity, share)) * reflectivity;
+            color += match material.conductor {
+                None => reflected,
+                Some(f0) => reflected * schlick_reflectance(at.cos_incidence(), f0.into()),
+            };
         }
         if transmits {
             color += self.transmission(&at, transparency, path, share) * transparency;
@@ -250,18 +330,32 @@ impl<'a> Integrator<'a> {
     /// own, or for a Fresnel dielectric its reflectance at this angle of all that is not
     /// diffuse (reflectivity + transparency), and the rest transmitted.
     #[inline]
-    fn split(&self, at: &Shading) -> (f32, f32) {
+    fn split(&self, at: &Shading, path: Path) -> (f32, f32) {
         let material = at.material;
         match material.eta {
             Some(eta) if material.fresnel && eta != 1.0 => {
-                let ratio = if at.entering { 1.0 / eta } else { eta };
-                let d = at.q.ray.dir;
-                let cos_i = -d.dot(at.ns) / d.length();
-                let r = fresnel_reflectance(cos_i, ratio);
+                let r = fresnel_reflectance(at.cos_incidence(), self.eta_ratio(at, path));
                 let specular = (material.reflectivity + material.transparency).min(1.0);
                 (specular * r, specular * (1.0 - r))
             }
             _ => (material.reflectivity, material.transparency),
+        }
+    }
+
+    /// η(incident side) / η(other side) at `at`, for a ray along `path`: entering, the
+    /// medium it travels in against the object's; leaving, the object's against the medium
+    /// around it (air, unless it is inside another object).
+    #[inline]
+    fn eta_ratio(&self, at: &Shading, path: Path) -> f32 {
+        let eta_of = |object: Option<u32>| match object {
+            Some(o) => self.appearance.material(o).eta.unwrap_or(1.0),
+            None => 1.0,
+        };
+        let own = at.material.eta.unwrap_or(1.0);
+        if at.entering {
+            eta_of(path.media.current()) / own
+        } else {
+            own / eta_of(path.media.outside(at.object))
         }
     }
 

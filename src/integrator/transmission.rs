@@ -45,11 +45,17 @@ impl Integrator<'_> {
         budget: u32,
     ) -> Vec3A {
         self.counts.secondary += 1;
+        let path_before = path;
         let material = at.material;
         let ray = at.q.ray;
+        // Through the surface the ray enters the object's medium, or leaves it.
+        let path = path.in_media(if at.entering {
+            path.media.entered(at.object)
+        } else {
+            path.media.left(at.object)
+        });
         if bends(material) {
-            let eta = material.eta.unwrap_or(1.0);
-            let ratio = if at.entering { 1.0 / eta } else { eta };
+            let ratio = self.eta_ratio(at, path_before);
             // Past the critical angle the transmitted light is reflected inside; either
             // way the ray must go where the true surface says.
             let dir = self.turned(at, |n| match refract(ray.dir, n, ratio) {

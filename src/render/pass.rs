@@ -2,10 +2,10 @@
 
 use super::accumulator::Accumulator;
 use super::settings::RenderSettings;
-use crate::accel::CameraView;
+use crate::accel::{CameraView, Reach};
 use crate::camera::CameraRays;
 use crate::integrator::{Integrator, RayCounts};
-use crate::sampler::Sampler;
+use crate::sampler::{SampleStream, Sampler};
 use crate::scene::PreparedScene;
 use rayon::prelude::*;
 
@@ -64,11 +64,21 @@ pub fn render_pass(
                         continue;
                     }
                     let x = x as u32;
-                    let ray = || {
+                    let mut stream = SampleStream::new(x, y, pass);
+                    let sample = if rays.has_lens() {
+                        // Lens rays do not start at the eye: the camera view (which lists
+                        // what rays from the eye can hit first) does not apply to them.
+                        let u = stream.next_2d();
                         let (dx, dy) = subsamples.offset(x);
-                        rays.ray(x as f32 + dx, y as f32 + dy)
+                        let ray = rays.ray_through_lens(x as f32 + dx, y as f32 + dy, u);
+                        integrator.trace_primary(Reach::After(0.0), || ray, stream)
+                    } else {
+                        let ray = || {
+                            let (dx, dy) = subsamples.offset(x);
+                            rays.ray(x as f32 + dx, y as f32 + dy)
+                        };
+                        integrator.trace_primary(view.reach(x, y), ray, stream)
                     };
-                    let sample = integrator.trace_primary(view.reach(x, y), ray);
                     sum.add(
                         sample.color.clamp(glam::Vec3::ZERO, glam::Vec3::ONE),
                         sample.signature,

@@ -4,7 +4,7 @@ use crate::integrator::SelfIntersection;
 use crate::sampler::SampleLayout;
 use thiserror::Error;
 
-use crate::limits::{AA, ADAPTIVE_TOLERANCE, EDGE_CONTRAST, IMAGE_SIDE};
+use crate::limits::{AA, ADAPTIVE_TOLERANCE, EDGE_CONTRAST, IMAGE_SIDE, SAMPLES};
 
 /// What a render is asked to do.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -15,6 +15,9 @@ pub struct RenderSettings {
     pub height: u32,
     /// Anti-aliasing level N: N×N subsamples per pixel, one per pass.
     pub aa: u32,
+    /// Subsamples per pixel, when not N×N: more for the noise of soft shadows, lenses and
+    /// glossy lobes (past N², the grid's cells are visited again at new places).
+    pub samples: Option<u32>,
     /// Where in each pixel the subsamples lie.
     pub layout: SampleLayout,
     /// Secondary rays weighted below this are skipped (0 traces all).
@@ -64,6 +67,7 @@ impl RenderSettings {
             width,
             height,
             aa,
+            samples: None,
             layout: SampleLayout::Stratified,
             min_weight: DEFAULT_MIN_WEIGHT,
             adaptive: None,
@@ -87,6 +91,11 @@ impl RenderSettings {
         }
         if !AA.contains(&self.aa) {
             return Err(SettingsError::Aa(self.aa));
+        }
+        if let Some(n) = self.samples
+            && !SAMPLES.contains(&n)
+        {
+            return Err(SettingsError::Samples(n));
         }
         if !(self.min_weight.is_finite() && (0.0..1.0).contains(&self.min_weight)) {
             return Err(SettingsError::MinWeight(self.min_weight));
@@ -119,18 +128,21 @@ impl RenderSettings {
         height: Option<u32>,
         aa: Option<u32>,
     ) -> Result<Self, SettingsError> {
-        let settings = Self::new(
-            width.unwrap_or(defaults.width),
-            height.unwrap_or(defaults.height),
-            aa.unwrap_or(defaults.aa),
-        );
+        let settings = Self {
+            samples: defaults.samples,
+            ..Self::new(
+                width.unwrap_or(defaults.width),
+                height.unwrap_or(defaults.height),
+                aa.unwrap_or(defaults.aa),
+            )
+        };
         settings.validate()?;
         Ok(settings)
     }
 
-    /// Passes to convergence: one per subsample of the N×N grid.
+    /// Passes to convergence: one per subsample (`samples`, else the N×N grid's).
     pub fn total_passes(&self) -> u32 {
-        self.aa * self.aa
+        self.samples.unwrap_or(self.aa * self.aa)
     }
 }
 
@@ -156,6 +168,12 @@ pub enum SettingsError {
     /// An anti-aliasing level out of range.
     #[error("anti-aliasing level {level}: must be {} to {} (N×N subsamples per pixel)", AA.start(), AA.end(), level = .0)]
     Aa(u32),
+    /// A lens (`--aperture`, `--focus-distance`) out of range.
+    #[error("camera lens: {0}")]
+    Lens(String),
+    /// A subsample count out of range.
+    #[error("samples {n}: must be {} to {} subsamples per pixel", SAMPLES.start(), SAMPLES.end(), n = .0)]
+    Samples(u32),
     /// A faint-ray threshold out of range.
     #[error("minimum ray weight {0}: must be a number in [0, 1)")]
     MinWeight(f32),

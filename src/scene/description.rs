@@ -2,7 +2,7 @@
 //! of the scene file loader, so preparing a `Scene` cannot fail.
 
 use crate::appearance::Material;
-use crate::appearance::{Background, Falloff, Light, LightKind};
+use crate::appearance::{Background, Fog, Light};
 use crate::camera::Camera;
 use crate::geometry::{Aabb, Cone, Cuboid, Cylinder, Disc, Mesh, Shape, Sphere, Torus, Transform};
 use glam::{Affine3A, DVec3, Quat, Vec3};
@@ -24,8 +24,10 @@ pub struct Scene {
     pub background: Background,
     /// Ambient light, multiplied by each material's `ambient` factor and colour.
     pub ambient: Vec3,
-    /// The point lights.
+    /// The lights.
     pub lights: Vec<Light>,
+    /// Fog filling the scene, if any.
+    pub fog: Option<Fog>,
     /// The objects, in the file's order.
     pub objects: Vec<SceneObject>,
 }
@@ -41,6 +43,9 @@ pub struct RenderDefaults {
     pub aa: u32,
     /// The most secondary bounces (reflection or refraction) along one path.
     pub max_depth: u32,
+    /// Subsamples per pixel when a scene asks for more (or fewer) than the N×N grid:
+    /// soft shadows, depth of field and glossy reflection converge with more.
+    pub samples: Option<u32>,
 }
 
 impl Default for RenderDefaults {
@@ -50,6 +55,7 @@ impl Default for RenderDefaults {
             height: 600,
             aa: 2,
             max_depth: 5,
+            samples: None,
         }
     }
 }
@@ -392,17 +398,16 @@ impl Scene {
         scene.origin = self.origin * scale as f64 + offset;
         scene.camera.eye = self.camera.eye * scale;
         for light in &mut scene.lights {
-            // Inverse-square light keeps its brightness where the distances scale with it.
-            if let LightKind::Point { position, falloff } = &mut light.kind {
-                *position *= scale;
-                if let Falloff::InverseSquare { intensity } = falloff {
-                    *intensity *= scale * scale;
-                }
-            }
+            *light = light.scaled(scale);
         }
+        scene.fog = self.fog.map(|f| f.scaled(scale));
+        scene.camera.focus_distance *= scale;
+        scene.camera.aperture *= scale;
         for object in &mut scene.objects {
             object.shape = object.shape.transformed(scale, Vec3::ZERO);
             object.material.texture = object.material.texture.scaled(scale);
+            // Absorption is per unit length: a larger object absorbs as much over its length.
+            object.material.absorption /= scale;
         }
         scene
     }

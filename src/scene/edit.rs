@@ -147,6 +147,18 @@ mod tests {
                 vfov: f32::NAN,
                 ..good
             },
+            Camera {
+                aperture: -1.0,
+                ..good
+            },
+            Camera {
+                aperture: f32::INFINITY,
+                ..good
+            },
+            Camera {
+                focus_distance: 0.0,
+                ..good
+            },
         ];
         for c in cases {
             assert!(check_camera(&c).is_err(), "{c:?}");

@@ -9,7 +9,7 @@ use super::description::{RenderDefaults, Scene, SceneObject, ShapeDesc};
 use super::error::{SceneError, line_column};
 use super::spans::FieldSpans;
 use crate::appearance::Material;
-use crate::appearance::{Background, Falloff, Light, LightKind};
+use crate::appearance::{AreaShape, Background, Falloff, Fog, FogKind, Light, LightKind, SpotCone};
 use crate::appearance::{ImageTexture, Texture, TextureError, UvTransform};
 use crate::camera::Camera;
 use crate::limits;
@@ -32,6 +32,7 @@ type P3 = [f64; 3];
 struct SceneFile {
     camera: Spanned<CameraDef>,
     render: Option<Spanned<RenderDef>>,
+    fog: Option<Spanned<FogDef>>,
     #[serde(default)]
     lights: Vec<Spanned<LightDef>>,
     #[serde(default)]
@@ -72,6 +73,17 @@ struct CameraDef {
     pitch: Option<f32>,
     up: Option<V3>,
     fov: f32,
+    aperture: Option<f32>,
+    focus_distance: Option<f32>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FogDef {
+    color: Option<V3>,
+    density: Option<f32>,
+    start: Option<f32>,
+    end: Option<f32>,
 }
 
 #[derive(Deserialize)]
@@ -80,6 +92,7 @@ struct RenderDef {
     width: Option<i64>,
     height: Option<i64>,
     aa: Option<i64>,
+    samples: Option<i64>,
     max_depth: Option<i64>,
     /// `[r, g, b]`, or a table: `{ bottom = …, top = … }` or `{ image = "…" }` (read by
     /// hand, for messages that say which form was meant).
@@ -104,6 +117,13 @@ struct LightDef {
     color: Option<V3>,
     falloff: Option<String>,
     intensity: Option<f32>,
+    corner: Option<P3>,
+    edge_u: Option<V3>,
+    edge_v: Option<V3>,
+    radius: Option<f32>,
+    angle: Option<f32>,
+    softness: Option<f32>,
+    visible: Option<bool>,
 }
 
 #[derive(Deserialize)]
@@ -137,6 +157,9 @@ struct MaterialDef {
     eta: Option<f32>,
     emission: Option<V3>,
     fresnel: Option<bool>,
+    roughness: Option<f32>,
+    absorption: Option<V3>,
+    conductor: Option<V3>,
 }
 
 #[derive(Deserialize)]
@@ -546,88 +569,180 @@ impl Validator<'_> {
 
     fn light(&self, at: &Item, l: &LightDef) -> Result<Light, SceneError> {
         let kind = l.kind.as_deref().unwrap_or("point");
-        let refuse = |field: &str, given: bool| {
-            if given {
-                Err(self.field_error(
-                    at,
-                    field,
-                    format!("`{field}` does not apply to a {kind} light"),
-                ))
-            } else {
-                Ok(())
-            }
-        };
-        let kind = match kind {
-            "point" => {
-                refuse("direction", l.direction.is_some())?;
-                let position = l
-                    .position
-                    .ok_or_else(|| self.error(at, "a point light needs `position`"))?;
-                let falloff = match l.falloff.as_deref().unwrap_or("none") {
-                    "none" => {
-                        if l.intensity.is_some() {
-                            return Err(self.field_error(
-                                at,
-                                "intensity",
-                                "`intensity` needs `falloff = \"inverse_square\"` (without \
-                                 falloff, `color` alone sets the brightness)",
-                            ));
-                        }
-                        Falloff::None
-                    }
-                    "inverse_square" => Falloff::InverseSquare {
-                        intensity: self.in_range(
-                            at,
-                            "intensity",
-                            l.intensity.unwrap_or(1.0),
-                            0.0,
-                            limits::MAX_LIGHT_INTENSITY,
-                        )?,
-                    },
-                    other => {
-                        return Err(self.field_error(
-                            at,
-                            "falloff",
-                            format!(
-                                "unknown falloff {} (expected \"none\" or \"inverse_square\")",
-                                quoted(other)
-                            ),
-                        ));
-                    }
-                };
-                LightKind::Point {
-                    position: self.position(at, "position", position)?,
-                    falloff,
-                }
-            }
-            "directional" => {
-                refuse("position", l.position.is_some())?;
-                refuse("falloff", l.falloff.is_some())?;
-                refuse("intensity", l.intensity.is_some())?;
-                let direction = l
-                    .direction
-                    .ok_or_else(|| self.error(at, "a directional light needs `direction`"))?;
-                let direction = self.point(at, "direction", direction)?;
-                let direction = crate::numerics::try_normalize(direction).ok_or_else(|| {
-                    self.field_error(at, "direction", "`direction` has zero length")
-                })?;
-                LightKind::Directional { direction }
-            }
+        // The fields each type takes; any other given is refused by name.
+        let takes: &[&str] = match kind {
+            "point" => &["position", "falloff", "intensity"],
+            "spot" => &[
+                "position",
+                "falloff",
+                "intensity",
+                "direction",
+                "angle",
+                "softness",
+            ],
+            "directional" => &["direction"],
+            "area" => &[
+                "corner",
+                "edge_u",
+                "edge_v",
+                "falloff",
+                "intensity",
+                "visible",
+            ],
+            "sphere" => &["position", "radius", "falloff", "intensity", "visible"],
             other => {
                 return Err(self.field_error(
                     at,
                     "type",
                     format!(
-                        "unknown light type {} (expected \"point\" or \"directional\")",
+                        "unknown light type {} (expected \"point\", \"spot\", \"directional\", \
+                         \"area\" or \"sphere\")",
                         quoted(other)
                     ),
                 ));
+            }
+        };
+        let given = [
+            ("position", l.position.is_some()),
+            ("direction", l.direction.is_some()),
+            ("falloff", l.falloff.is_some()),
+            ("intensity", l.intensity.is_some()),
+            ("corner", l.corner.is_some()),
+            ("edge_u", l.edge_u.is_some()),
+            ("edge_v", l.edge_v.is_some()),
+            ("radius", l.radius.is_some()),
+            ("angle", l.angle.is_some()),
+            ("softness", l.softness.is_some()),
+            ("visible", l.visible.is_some()),
+        ];
+        let a = if kind == "area" { "an" } else { "a" };
+        if let Some((field, _)) = given.iter().find(|(f, g)| *g && !takes.contains(f)) {
+            return Err(self.field_error(
+                at,
+                field,
+                format!("`{field}` does not apply to {a} {kind} light"),
+            ));
+        }
+        let needs = |field: &str| self.error(at, format!("{a} {kind} light needs `{field}`"));
+        let position = |field: &str, v: Option<P3>| {
+            let v = v.ok_or_else(|| needs(field))?;
+            self.position(at, field, v)
+        };
+        let direction = || -> Result<Vec3, SceneError> {
+            let d = l.direction.ok_or_else(|| needs("direction"))?;
+            let d = self.point(at, "direction", d)?;
+            crate::numerics::try_normalize(d)
+                .ok_or_else(|| self.field_error(at, "direction", "`direction` has zero length"))
+        };
+        let kind = match kind {
+            "point" => LightKind::Point {
+                position: position("position", l.position)?,
+                falloff: self.falloff(at, l)?,
+            },
+            "spot" => {
+                let (lo, hi) = (*limits::SPOT_ANGLE.start(), *limits::SPOT_ANGLE.end());
+                let angle = l.angle.ok_or_else(|| needs("angle"))?;
+                let angle = self.in_range(at, "angle", angle, lo, hi)?;
+                let softness =
+                    self.in_range(at, "softness", l.softness.unwrap_or(0.0), 0.0, 1.0)?;
+                LightKind::Spot {
+                    position: position("position", l.position)?,
+                    falloff: self.falloff(at, l)?,
+                    cone: SpotCone::new(direction()?, angle, softness),
+                }
+            }
+            "directional" => LightKind::Directional {
+                direction: direction()?,
+            },
+            "area" => {
+                let corner = position("corner", l.corner)?;
+                let edge = |field: &str, v: Option<V3>| {
+                    let v = v.ok_or_else(|| needs(field))?;
+                    let e = self.point(at, field, v)?;
+                    if e.abs().max_element() as f64 > limits::MAX_COORDINATE {
+                        return Err(self.field_error(
+                            at,
+                            field,
+                            format!(
+                                "`{field}` must lie within {:e} on every axis",
+                                limits::MAX_COORDINATE
+                            ),
+                        ));
+                    }
+                    Ok(e)
+                };
+                let (edge_u, edge_v) = (edge("edge_u", l.edge_u)?, edge("edge_v", l.edge_v)?);
+                // The two edges must span a parallelogram: neither may be (nearly) zero
+                // or parallel to the other, or its samples would all lie on a line.
+                let area = edge_u.as_dvec3().cross(edge_v.as_dvec3()).length();
+                let lengths = edge_u.as_dvec3().length() * edge_v.as_dvec3().length();
+                if !(area > 1e-6 * lengths && area.sqrt() >= limits::MIN_LENGTH) {
+                    return Err(self.field_error(
+                        at,
+                        "edge_v",
+                        "`edge_u` and `edge_v` must span a rectangle: neither zero nor parallel",
+                    ));
+                }
+                LightKind::Area {
+                    shape: AreaShape::Rectangle {
+                        corner,
+                        edge_u,
+                        edge_v,
+                    },
+                    falloff: self.falloff(at, l)?,
+                    visible: l.visible.unwrap_or(true),
+                }
+            }
+            _ => {
+                let radius = l.radius.ok_or_else(|| needs("radius"))?;
+                LightKind::Area {
+                    shape: AreaShape::Sphere {
+                        center: position("position", l.position)?,
+                        radius: self.length(at, "radius", radius)?,
+                    },
+                    falloff: self.falloff(at, l)?,
+                    visible: l.visible.unwrap_or(true),
+                }
             }
         };
         Ok(Light {
             kind,
             color: self.radiance(at, "color", l.color.unwrap_or([1.0; 3]))?,
         })
+    }
+
+    /// A light's `falloff` and `intensity`.
+    fn falloff(&self, at: &Item, l: &LightDef) -> Result<Falloff, SceneError> {
+        match l.falloff.as_deref().unwrap_or("none") {
+            "none" => {
+                if l.intensity.is_some() {
+                    return Err(self.field_error(
+                        at,
+                        "intensity",
+                        "`intensity` needs `falloff = \"inverse_square\"` (without \
+                         falloff, `color` alone sets the brightness)",
+                    ));
+                }
+                Ok(Falloff::None)
+            }
+            "inverse_square" => Ok(Falloff::InverseSquare {
+                intensity: self.in_range(
+                    at,
+                    "intensity",
+                    l.intensity.unwrap_or(1.0),
+                    0.0,
+                    limits::MAX_LIGHT_INTENSITY,
+                )?,
+            }),
+            other => Err(self.field_error(
+                at,
+                "falloff",
+                format!(
+                    "unknown falloff {} (expected \"none\" or \"inverse_square\")",
+                    quoted(other)
+                ),
+            )),
+        }
     }
 
     fn scene(&self, file: SceneFile) -> Result<Scene, SceneError> {
@@ -646,6 +761,7 @@ impl Validator<'_> {
                 self.light(&at, l.get_ref())
             })
             .collect::<Result<Vec<_>, SceneError>>()?;
+        let fog = self.fog(file.fog.as_ref())?;
         self.check_texel_budget(&file.textures, file.render.as_ref())?;
         let mut images = Images::default();
         let background = self.background(file.render.as_ref(), &mut images)?;
@@ -894,6 +1010,7 @@ impl Validator<'_> {
             background,
             ambient,
             lights,
+            fog,
             objects,
         })
     }
@@ -1044,13 +1161,10 @@ impl Validator<'_> {
                 pitch,
                 vfov,
                 up,
+                aperture: 0.0,
+                focus_distance: 1.0,
             };
-            // The fields are checked one by one above, for messages on their own lines;
-            // this is the rule every camera follows.
-            return camera
-                .check()
-                .map(|()| camera)
-                .map_err(|m| self.error(&at, m));
+            return self.lens(&at, c, camera, None);
         };
         // The view is given by `look_at` or by `direction`: point at the one given.
         let view = if c.look_at.is_some() {
@@ -1074,10 +1188,42 @@ impl Validator<'_> {
                 ),
             )
         })?;
+        // A `look_at` target is in focus unless `focus_distance` says otherwise.
+        let target = c
+            .look_at
+            .map(|_| direction.dot(camera.forward()))
+            .filter(|d| d.is_finite() && *d > 0.0);
+        self.lens(&at, c, camera, target)
+    }
+
+    /// `camera` with the lens `c` gives (`aperture`, `focus_distance`, which defaults to
+    /// `target`), checked by the rule every camera follows. (The fields are checked one by
+    /// one before it, for messages on their own lines.)
+    fn lens(
+        &self,
+        at: &Item,
+        c: &CameraDef,
+        mut camera: Camera,
+        target: Option<f32>,
+    ) -> Result<Camera, SceneError> {
+        let max = limits::MAX_COORDINATE as f32;
+        camera.aperture = self.in_range(at, "aperture", c.aperture.unwrap_or(0.0), 0.0, max)?;
+        camera.focus_distance = match (c.focus_distance, target) {
+            (Some(d), _) => self.length(at, "focus_distance", d)?,
+            (None, Some(d)) => d.max(limits::MIN_LENGTH as f32),
+            (None, None) if camera.aperture > 0.0 => {
+                return Err(self.field_error(
+                    at,
+                    "aperture",
+                    "an `aperture` needs a `focus_distance` (or a `look_at` to focus on)",
+                ));
+            }
+            (None, None) => 1.0,
+        };
         camera
             .check()
             .map(|()| camera)
-            .map_err(|m| self.error(&at, m))
+            .map_err(|m| self.error(at, m))
     }
 
     fn render(&self, r: Option<&Spanned<RenderDef>>) -> Result<(RenderDefaults, Vec3), SceneError> {
@@ -1120,6 +1266,16 @@ impl Validator<'_> {
                 0,
                 *limits::DEPTH.end() as i64,
             )?,
+            samples: match r.samples {
+                None => None,
+                Some(n) => Some(self.count(
+                    &at,
+                    "samples",
+                    n,
+                    *limits::SAMPLES.start() as i64,
+                    *limits::SAMPLES.end() as i64,
+                )?),
+            },
         };
         let ambient = self.radiance(&at, "ambient", r.ambient.unwrap_or([0.2; 3]))?;
         Ok((render, ambient))
@@ -1412,6 +1568,58 @@ impl Validator<'_> {
                 "`fresnel = true` needs a refractive material: an `eta` other than 1",
             ));
         }
+        let (lo, hi) = (*limits::ROUGHNESS.start(), *limits::ROUGHNESS.end());
+        let roughness = self.in_range(&at, "roughness", m.roughness.unwrap_or(0.0), lo, hi)?;
+        let transparency = fraction("transparency", m.transparency)?;
+        let reflectivity = fraction("reflectivity", m.reflectivity)?;
+        if roughness > 0.0 && reflectivity == 0.0 && !fresnel {
+            return Err(self.field_error(
+                &at,
+                "roughness",
+                "`roughness` spreads mirror reflection: it needs a `reflectivity` above 0 \
+                 (or `fresnel = true`)",
+            ));
+        }
+        let absorption = match m.absorption {
+            None => Vec3::ZERO,
+            Some(a) => {
+                if transparency == 0.0 {
+                    return Err(self.field_error(
+                        &at,
+                        "absorption",
+                        "`absorption` tints light travelling inside: it needs a \
+                         `transparency` above 0",
+                    ));
+                }
+                self.color_up_to(
+                    &at,
+                    "absorption",
+                    a,
+                    limits::MAX_EXTINCTION,
+                    "per scene unit",
+                )?
+            }
+        };
+        let conductor = match m.conductor {
+            None => None,
+            Some(c) => {
+                if reflectivity == 0.0 {
+                    return Err(self.field_error(
+                        &at,
+                        "conductor",
+                        "`conductor` tints mirror reflection: it needs a `reflectivity` above 0",
+                    ));
+                }
+                if fresnel {
+                    return Err(self.field_error(
+                        &at,
+                        "conductor",
+                        "a material is either a `conductor` (a metal) or `fresnel` glass, not both",
+                    ));
+                }
+                Some(self.reflectance(&at, "conductor", c)?)
+            }
+        };
         Ok(Material {
             texture,
             ambient: factor("ambient", m.ambient, d.ambient)?,
@@ -1424,15 +1632,66 @@ impl Validator<'_> {
                 0.0,
                 limits::MAX_SHININESS,
             )?,
-            reflectivity: fraction("reflectivity", m.reflectivity)?,
-            transparency: fraction("transparency", m.transparency)?,
+            reflectivity,
+            transparency,
             eta,
             emission: match m.emission {
                 Some(e) => self.radiance(&at, "emission", e)?,
                 None => d.emission,
             },
             fresnel,
+            roughness,
+            absorption,
+            conductor,
         })
+    }
+
+    /// The `[fog]` table: exponential with `density`, or linear from `start` to `end`.
+    fn fog(&self, f: Option<&Spanned<FogDef>>) -> Result<Option<Fog>, SceneError> {
+        let Some(f) = f else {
+            return Ok(None);
+        };
+        let at = Item {
+            span: f.span(),
+            name: "fog",
+        };
+        let f = f.get_ref();
+        let color = self.radiance(&at, "color", f.color.unwrap_or([0.5; 3]))?;
+        let max = limits::MAX_COORDINATE as f32;
+        let kind = match (f.density, f.start, f.end) {
+            (Some(density), None, None) => FogKind::Exponential {
+                density: self.in_range(&at, "density", density, 0.0, limits::MAX_EXTINCTION)?,
+            },
+            (None, start, Some(end)) => {
+                let start = self.in_range(&at, "start", start.unwrap_or(0.0), 0.0, max)?;
+                let end = self.in_range(&at, "end", end, 0.0, max)?;
+                if end <= start {
+                    return Err(self.field_error(
+                        &at,
+                        "end",
+                        format!(
+                            "`end` ({}) must lie beyond `start` ({})",
+                            number(end),
+                            number(start)
+                        ),
+                    ));
+                }
+                FogKind::Linear { start, end }
+            }
+            (Some(_), _, _) => {
+                return Err(self.error(
+                    &at,
+                    "give either `density` (exponential fog) or `start` and `end` (linear), not both",
+                ));
+            }
+            (None, _, None) => {
+                return Err(self.error(
+                    &at,
+                    "fog needs `density` (exponential) or `end` (linear, with an optional `start`)",
+                ));
+            }
+        };
+        Ok(Some(Fog { color, kind }))
     }
 }
 

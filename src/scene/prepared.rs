@@ -34,7 +34,8 @@ impl PreparedScene {
                 scene.ambient,
                 scene.background.clone(),
                 scene.render.max_depth,
-            ),
+            )
+            .with_fog(scene.fog),
         }
     }
 }

@@ -93,6 +93,8 @@ mod tests {
             pitch: 0.0,
             vfov: 30.0,
             up: Vec3::Y,
+            aperture: 0.0,
+            focus_distance: 1.0,
         }
     }
 

@@ -143,6 +143,7 @@ struct App {
 impl App {
     fn settings(&self, width: u32, height: u32) -> RenderSettings {
         let mut s = RenderSettings::new(width, height, self.panel.aa);
+        s.samples = self.panel.samples;
         if self.panel.adaptive {
             s.adaptive = Some(AdaptiveSettings {
                 tolerance: self.panel.tolerance,

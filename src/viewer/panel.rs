@@ -45,6 +45,8 @@ pub struct PanelState {
     pub camera: Camera,
     pub initial_camera: Camera,
     pub aa: u32,
+    /// Subsamples per pixel when not N×N (the scene's `samples`).
+    pub samples: Option<u32>,
     pub adaptive: bool,
     pub tolerance: f32,
     /// The last screenshot or input message, and whether it is an error.
@@ -64,6 +66,7 @@ impl PanelState {
         Self {
             camera: scene.camera,
             initial_camera: scene.camera,
+            samples: scene.render.samples,
             scene,
             aa,
             adaptive: false,

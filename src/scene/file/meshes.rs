@@ -344,7 +344,7 @@ impl Validator<'_> {
             transparency,
             eta,
             emission: ke.unwrap_or(Vec3::ZERO),
-            fresnel: false,
+            ..d
         })
     }
 }
