@@ -10,7 +10,7 @@ use proptest::prelude::*;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, OnceLock};
 
-const SEEDS: [&str; 7] = [
+const SEEDS: [&str; 8] = [
     include_str!("../fuzz/corpus/seed.toml"),
     include_str!("../fuzz/corpus/shapes.toml"),
     include_str!("../fuzz/corpus/sphere.toml"),
@@ -18,6 +18,7 @@ const SEEDS: [&str; 7] = [
     include_str!("../fuzz/corpus/lights.toml"),
     include_str!("../fuzz/corpus/environment.toml"),
     include_str!("../fuzz/corpus/solids.toml"),
+    include_str!("../fuzz/corpus/effects.toml"),
 ];
 
 /// Values that have broken renderers: overflow when squared or multiplied, underflow,
@@ -50,7 +51,7 @@ const HOSTILE: [&str; 24] = [
 ];
 
 /// Text the fuzzer's dictionary also offers: table headers and keys out of place.
-const FRAGMENTS: [&str; 14] = [
+const FRAGMENTS: [&str; 19] = [
     "[[spheres]]\ncenter = [0, 0, -5]\nradius = 1\n",
     "[[polygons]]\nvertices = [[0, 0, 0], [1, 0, 0], [1, 1e-7, 0]]\n",
     "[[tetrahedra]]\nvertices = [[0,0,0],[1,0,0],[0,1,0],[0,0,1e-9]]\n",
@@ -65,6 +66,11 @@ const FRAGMENTS: [&str; 14] = [
     "[[planes]]\npoint = [0, 1e12, 0]\nnormal = [1e-45, 1, 0]\n",
     "[[cones]]\nbase = [0, 0, -5]\nradius = 0\ntop_radius = 1e12\nheight = 1e-12\ncaps = false\n",
     "[[boxes]]\nmin = [0, 0, 0]\nmax = [1e-30, 1, 1]\nscale = [1e6, 1e-6, 1]\nrotate = [0, 45, 0]\n",
+    "[[lights]]\ntype = \"area\"\ncorner = [0, 1e12, 0]\nedge_u = [1e12, 0, 0]\nedge_v = [0, 1e-12, 1e-12]\n",
+    "[[lights]]\ntype = \"sphere\"\nposition = [0, 0, 0]\nradius = 1e12\nfalloff = \"inverse_square\"\nintensity = 1e30\n",
+    "[[lights]]\ntype = \"spot\"\nposition = [0, 0, 1]\ndirection = [0, 0, -1]\nangle = 0.01\nsoftness = 1\n",
+    "[fog]\ndensity = 1e12\n",
+    "[materials.y]\ntransparency = 1\neta = 10\nfresnel = true\nroughness = 1\nabsorption = [1e12, 0, 1e-30]\n",
 ];
 
 #[derive(Clone, Debug)]

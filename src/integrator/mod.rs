@@ -18,7 +18,7 @@ use crate::numerics::offset_ray_origin;
 use crate::sampler::SampleStream;
 use crate::scene::{Geometry, PreparedScene};
 use glam::{Vec3, Vec3A};
-use path::Path;
+use path::{Media, Path};
 
 /// Rays traced, by kind.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -94,6 +94,10 @@ pub struct Integrator<'a> {
     solid_background: Option<Vec3A>,
     /// The random numbers of the subsample being traced (lens, area lights, glossy lobes).
     stream: SampleStream,
+    /// The transparent objects the ray being traced is inside: set by a transmitted ray for
+    /// its subtree and put back after it (kept here, not in each ray's `Path`, which then
+    /// still fits in two registers).
+    media: Media,
 }
 
 /// What shading knows at a hit.
@@ -140,6 +144,7 @@ impl<'a> Integrator<'a> {
                 .solid()
                 .filter(|_| scene.appearance.fog().is_none() && !scene.appearance.any_emitter()),
             stream: SampleStream::new(0, 0, 0),
+            media: Media::AIR,
         }
     }
 
@@ -181,6 +186,7 @@ impl<'a> Integrator<'a> {
         self.counts.primary += 1;
         self.signature = Signature::default();
         self.stream = stream;
+        self.media = Media::AIR;
         let color = match (reach, self.solid_background) {
             (Reach::Among([]), Some(background)) => {
                 self.signature.miss();
@@ -208,7 +214,7 @@ impl<'a> Integrator<'a> {
     /// The colour along `q` from `t_min` on, where `reach` says what it can hit: what it
     /// meets (a surface, a glowing light, or the background), seen through the medium it
     /// travels in (absorption inside an object, fog in the air).
-    #[inline]
+    #[inline(always)]
     fn trace_reaching(&mut self, q: &RayQuery, t_min: f32, reach: Reach, path: Path) -> Vec3A {
         let hit = self.accel().nearest_hit(q, reach);
         let t_end = hit.map_or(f32::INFINITY, |h| h.shape.t);
@@ -222,7 +228,7 @@ impl<'a> Integrator<'a> {
             (None, Some(hit)) => (self.shade(q, &hit, path), t_end),
             (None, None) => (self.miss(q.ray.dir), t_end),
         };
-        self.through_medium(color, q, t_end - t_min, path)
+        self.through_medium(color, q, t_end - t_min)
     }
 
     /// The nearest glowing light surface along `ray` in (t_min, t_max): its colour and
@@ -246,8 +252,8 @@ impl<'a> Integrator<'a> {
     /// `color`, seen from `dt` (in units of the ray's direction) along `q` through the
     /// medium the ray travels in: an object's absorption, or in the air, the fog.
     #[inline]
-    fn through_medium(&self, color: Vec3A, q: &RayQuery, dt: f32, path: Path) -> Vec3A {
-        match path.media.current() {
+    fn through_medium(&self, color: Vec3A, q: &RayQuery, dt: f32) -> Vec3A {
+        match self.media.current() {
             Some(object) => {
                 let absorption = self.appearance.material(object).absorption;
                 if absorption == Vec3::ZERO {
@@ -303,7 +309,7 @@ impl<'a> Integrator<'a> {
 
         // Reflection and refraction spend a bounce; a straight crossing does not.
         let bounces_left = path.depth < self.appearance.max_depth();
-        let (reflectivity, transparency) = self.split(&at, path);
+        let (reflectivity, transparency) = self.split(&at);
         let reflects = self.reflects(reflectivity, path, bounces_left);
         let transmits = self.transmits(material, transparency, path, bounces_left);
         // The rays this hit spawns share what is left of the sample's budget evenly; when
@@ -330,11 +336,11 @@ impl<'a> Integrator<'a> {
     /// own, or for a Fresnel dielectric its reflectance at this angle of all that is not
     /// diffuse (reflectivity + transparency), and the rest transmitted.
     #[inline]
-    fn split(&self, at: &Shading, path: Path) -> (f32, f32) {
+    fn split(&self, at: &Shading) -> (f32, f32) {
         let material = at.material;
         match material.eta {
             Some(eta) if material.fresnel && eta != 1.0 => {
-                let r = fresnel_reflectance(at.cos_incidence(), self.eta_ratio(at, path));
+                let r = fresnel_reflectance(at.cos_incidence(), self.eta_ratio(at));
                 let specular = (material.reflectivity + material.transparency).min(1.0);
                 (specular * r, specular * (1.0 - r))
             }
@@ -342,20 +348,20 @@ impl<'a> Integrator<'a> {
         }
     }
 
-    /// η(incident side) / η(other side) at `at`, for a ray along `path`: entering, the
-    /// medium it travels in against the object's; leaving, the object's against the medium
-    /// around it (air, unless it is inside another object).
+    /// η(incident side) / η(other side) at `at`: entering, the medium the ray travels in
+    /// against the object's; leaving, the object's against the medium around it (air, unless
+    /// it is inside another object).
     #[inline]
-    fn eta_ratio(&self, at: &Shading, path: Path) -> f32 {
+    fn eta_ratio(&self, at: &Shading) -> f32 {
         let eta_of = |object: Option<u32>| match object {
             Some(o) => self.appearance.material(o).eta.unwrap_or(1.0),
             None => 1.0,
         };
         let own = at.material.eta.unwrap_or(1.0);
         if at.entering {
-            eta_of(path.media.current()) / own
+            eta_of(self.media.current()) / own
         } else {
-            own / eta_of(path.media.outside(at.object))
+            own / eta_of(self.media.outside(at.object))
         }
     }
 

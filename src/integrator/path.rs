@@ -19,8 +19,6 @@ pub struct Path {
     /// How many more secondary rays this ray's subtree may spawn (limits::RAY_BUDGET for
     /// the whole tree). Every ray spends one, so the recursion is at most this deep.
     pub budget: u32,
-    /// The transparent objects the ray is inside, innermost last.
-    pub media: Media,
 }
 
 /// The transparent objects a ray is inside, innermost last: it travels in the innermost,
@@ -33,6 +31,12 @@ pub struct Media {
 }
 
 impl Media {
+    /// Air: inside nothing.
+    pub const AIR: Media = Media {
+        objects: [0; MAX_NESTED_MEDIA],
+        len: 0,
+    };
+
     /// The object the ray travels inside, if any.
     #[inline]
     pub fn current(&self) -> Option<u32> {
@@ -78,10 +82,6 @@ impl Path {
         straight: 0,
         weight: 1.0,
         budget: crate::limits::RAY_BUDGET,
-        media: Media {
-            objects: [0; MAX_NESTED_MEDIA],
-            len: 0,
-        },
     };
 
     /// The path of a ray that bounces (reflects or refracts) off this one's hit, carrying
@@ -92,7 +92,6 @@ impl Path {
             straight: 0,
             weight: self.weight * fraction,
             budget,
-            media: self.media,
         }
     }
 
@@ -103,13 +102,7 @@ impl Path {
             straight: self.straight + 1,
             weight: self.weight * fraction,
             budget,
-            media: self.media,
         }
-    }
-
-    /// This path in `media`.
-    pub fn in_media(self, media: Media) -> Path {
-        Path { media, ..self }
     }
 }
 
@@ -119,7 +112,7 @@ mod tests {
 
     #[test]
     fn media_nest_and_unnest_in_any_order() {
-        let air = Path::PRIMARY.media;
+        let air = Media::AIR;
         assert_eq!(air.current(), None);
         let glass = air.entered(3);
         let water = glass.entered(7);

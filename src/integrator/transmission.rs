@@ -45,17 +45,18 @@ impl Integrator<'_> {
         budget: u32,
     ) -> Vec3A {
         self.counts.secondary += 1;
-        let path_before = path;
         let material = at.material;
         let ray = at.q.ray;
-        // Through the surface the ray enters the object's medium, or leaves it.
-        let path = path.in_media(if at.entering {
-            path.media.entered(at.object)
+        // Through the surface the ray enters the object's medium, or leaves it, for its
+        // subtree; the media are put back after.
+        let around = self.media;
+        let beyond = if at.entering {
+            around.entered(at.object)
         } else {
-            path.media.left(at.object)
-        });
-        if bends(material) {
-            let ratio = self.eta_ratio(at, path_before);
+            around.left(at.object)
+        };
+        let color = if bends(material) {
+            let ratio = self.eta_ratio(at);
             // Past the critical angle the transmitted light is reflected inside; either
             // way the ray must go where the true surface says.
             let dir = self.turned(at, |n| match refract(ray.dir, n, ratio) {
@@ -65,13 +66,20 @@ impl Integrator<'_> {
             let origin = self.leave(&at.surface, at.n, dir);
             let q = RayQuery::new(Ray::new(origin, dir));
             let inside = self.inside(at, dir);
+            // Reflected inside (past the critical angle), the ray stays where it was.
+            if dir.dot(at.n) < 0.0 {
+                self.media = beyond;
+            }
             self.trace(&q, 0.0, inside, path.bounce(transparency, budget))
         } else {
             // Unbent light goes on along the very same ray, past this hit: exact, so an
             // eta-1 clear object leaves the image untouched.
             let inside = self.inside(at, ray.dir);
             let path = path.straight_on(transparency, budget);
+            self.media = beyond;
             self.trace(at.q, at.hit.shape.t, inside, path)
-        }
+        };
+        self.media = around;
+        color
     }
 }

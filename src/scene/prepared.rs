@@ -18,6 +18,18 @@ pub struct PreparedScene {
 }
 
 impl PreparedScene {
+    /// How far along the view axis the nearest surface seen through image point (x, y)
+    /// lies (what a click to focus focuses on); None where the ray meets nothing.
+    pub fn depth_at(&self, rays: &crate::camera::CameraRays, x: f32, y: f32) -> Option<f32> {
+        let q = crate::geometry::RayQuery::new(rays.ray(x, y));
+        let hit = self
+            .geometry
+            .accel()
+            .nearest_hit(&q, crate::accel::Reach::After(0.0))?;
+        let depth = hit.shape.t * q.ray.dir.dot(rays.forward().into());
+        (depth.is_finite() && depth > 0.0).then_some(depth)
+    }
+
     /// Prepares `scene` with every shortcut on.
     pub fn new(scene: &Scene) -> Self {
         Self::with_options(scene, AccelOptions::ALL)

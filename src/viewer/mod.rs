@@ -107,6 +107,8 @@ pub fn run(launch: Launch) -> Result<()> {
         modifiers: Default::default(),
         status: Status::default(),
         render_error: None,
+        press: None,
+        awaiting_focus: false,
     };
     event_loop
         .run_app(&mut app)
@@ -138,6 +140,11 @@ struct App {
     status: Status,
     /// The last failure of the render thread, reported again when the window closes.
     render_error: Option<String>,
+    /// Where a left press on the image began, and how far the cursor has moved since: a
+    /// press released where it began is a click (which focuses the lens).
+    press: Option<(PhysicalPosition<f64>, f64)>,
+    /// A focus click was sent; the panel takes the distance from the next status.
+    awaiting_focus: bool,
 }
 
 impl App {
@@ -258,6 +265,16 @@ impl App {
             eprintln!("prism: error: the render failed: {e}");
             self.render_error = Some(e.clone());
         }
+        // A focus click's distance, once the render thread has found it.
+        if self.awaiting_focus
+            && !status.preview
+            && status.focus_distance > 0.0
+            && status.focus_distance != self.panel.camera.focus_distance
+        {
+            self.panel.camera.focus_distance = status.focus_distance;
+            self.awaiting_focus = false;
+            eprintln!("prism: focused at {}", status.focus_distance);
+        }
         self.status = status;
     }
 
@@ -267,6 +284,13 @@ impl App {
         for &object in &changes.materials {
             let material = self.panel.scene.objects[object].material.clone();
             g.render.send(Request::Material { object, material });
+        }
+        for &index in &changes.lights {
+            let light = self.panel.scene.lights[index];
+            g.render.send(Request::Light { index, light });
+        }
+        if changes.fog {
+            g.render.send(Request::Fog(self.panel.scene.fog));
         }
         if changes.camera {
             self.send_camera(false);
@@ -359,6 +383,9 @@ impl App {
             && let Some(last) = self.cursor
         {
             let (dx, dy) = (position.x - last.x, position.y - last.y);
+            if let Some((_, moved)) = &mut self.press {
+                *moved += dx.abs() + dy.abs();
+            }
             if dx != 0.0 || dy != 0.0 {
                 CameraInput::drag(&mut self.panel.camera, dx as f32, dy as f32);
                 self.send_camera(true);
@@ -374,6 +401,7 @@ impl App {
             ElementState::Pressed => {
                 if on_image {
                     self.input.dragging = true;
+                    self.press = self.cursor.map(|c| (c, 0.0));
                 }
             }
             ElementState::Released => {
@@ -382,6 +410,15 @@ impl App {
                     if !self.input.moving() {
                         self.send_camera(false);
                     }
+                }
+                // A click (no drag) with a lens focuses on what is under the cursor.
+                if let (Some((at, moved)), Some(g)) = (self.press.take(), &self.gfx)
+                    && moved < 3.0
+                    && self.panel.camera.aperture > 0.0
+                {
+                    let x = (at.x - g.panel_px() as f64) as f32;
+                    g.render.send(Request::FocusAt { x, y: at.y as f32 });
+                    self.awaiting_focus = true;
                 }
             }
         }

@@ -2,6 +2,7 @@
 
 use super::render_thread::Status;
 use egui::{DragValue, RichText, Slider, SliderClamping};
+use prism::appearance::LightKind;
 use prism::camera::Camera;
 use prism::scene::Scene;
 use prism::scene::check_camera;
@@ -35,6 +36,9 @@ pub const SLIDERS: SliderRanges = SliderRanges {
 pub struct Changes {
     /// Objects whose material changed.
     pub materials: Vec<usize>,
+    /// Lights that changed.
+    pub lights: Vec<usize>,
+    pub fog: bool,
     pub camera: bool,
     pub settings: bool,
     pub screenshot: bool,
@@ -53,6 +57,8 @@ pub struct PanelState {
     pub message: Option<(String, bool)>,
     refractive: Vec<usize>,
     transparent: Vec<usize>,
+    /// Objects that reflect (a roughness slider each).
+    reflective: Vec<usize>,
 }
 
 impl PanelState {
@@ -63,7 +69,14 @@ impl PanelState {
         let transparent = (0..scene.objects.len())
             .filter(|&i| scene.objects[i].material.transparency > 0.0)
             .collect();
+        let reflective = (0..scene.objects.len())
+            .filter(|&i| {
+                let m = &scene.objects[i].material;
+                m.reflectivity > 0.0 || m.fresnel
+            })
+            .collect();
         Self {
+            reflective,
             camera: scene.camera,
             initial_camera: scene.camera,
             samples: scene.render.samples,
@@ -88,6 +101,8 @@ impl PanelState {
                 ui.separator();
             }
             self.materials(ui, &mut changes);
+            ui.separator();
+            self.effects(ui, &mut changes);
             ui.separator();
             ui.label(RichText::new("Anti-aliasing").strong());
             let aa = ui.add(
@@ -171,6 +186,105 @@ impl PanelState {
         }
     }
 
+    /// Lights' sizes and cones, glossy roughness, Fresnel glass and fog: each change
+    /// restarts the accumulation.
+    fn effects(&mut self, ui: &mut egui::Ui, changes: &mut Changes) {
+        ui.label(RichText::new("Lights and effects").strong());
+        for i in 0..self.scene.lights.len() {
+            match self.scene.lights[i].kind {
+                LightKind::Area { shape, .. } => {
+                    let mut size = shape.size();
+                    let step = size * 0.01;
+                    let r = ui.add(
+                        DragValue::new(&mut size)
+                            .speed(step)
+                            .range(prism::limits::MIN_LENGTH as f32..=f32::MAX)
+                            .prefix(format!("light {i} size ")),
+                    );
+                    if r.changed() {
+                        match self.scene.set_light_size(i, size) {
+                            Ok(()) => changes.lights.push(i),
+                            Err(e) => self.message = Some((e.to_string(), true)),
+                        }
+                    }
+                }
+                LightKind::Spot { cone, .. } => {
+                    let (mut angle, mut softness) = (cone.angle, cone.softness);
+                    let a = ui.add(
+                        Slider::new(&mut angle, prism::limits::SPOT_ANGLE)
+                            .logarithmic(true)
+                            .clamping(SliderClamping::Always)
+                            .text(format!("spot {i} angle °")),
+                    );
+                    let s = ui.add(
+                        Slider::new(&mut softness, 0.0..=1.0)
+                            .clamping(SliderClamping::Always)
+                            .text(format!("spot {i} softness")),
+                    );
+                    if a.changed() || s.changed() {
+                        match self.scene.set_spot(i, angle, softness) {
+                            Ok(()) => changes.lights.push(i),
+                            Err(e) => self.message = Some((e.to_string(), true)),
+                        }
+                    }
+                }
+                LightKind::Point { .. } | LightKind::Directional { .. } => {}
+            }
+        }
+        for &i in &self.reflective.clone() {
+            let name = self.scene.objects[i].name.clone();
+            let mut r = self.scene.objects[i].material.roughness;
+            let changed = ui
+                .add(
+                    Slider::new(&mut r, prism::limits::ROUGHNESS)
+                        .clamping(SliderClamping::Always)
+                        .text(format!("{name} roughness")),
+                )
+                .changed();
+            if changed {
+                match self.scene.set_roughness(i, r) {
+                    Ok(()) => changes.materials.push(i),
+                    Err(e) => self.message = Some((e.to_string(), true)),
+                }
+            }
+        }
+        for &i in &self.refractive.clone() {
+            let m = &self.scene.objects[i].material;
+            if m.eta == Some(1.0) {
+                continue;
+            }
+            let mut on = m.fresnel;
+            let name = self.scene.objects[i].name.clone();
+            if ui
+                .checkbox(&mut on, format!("{name}: Fresnel glass"))
+                .changed()
+            {
+                match self.scene.set_fresnel(i, on) {
+                    Ok(()) => changes.materials.push(i),
+                    Err(e) => self.message = Some((e.to_string(), true)),
+                }
+            }
+        }
+        if let Some(fog) = self.scene.fog {
+            let mut density = fog.density();
+            let step = density * 0.01;
+            let changed = ui
+                .add(
+                    DragValue::new(&mut density)
+                        .speed(step)
+                        .range(f32::MIN_POSITIVE..=prism::limits::MAX_EXTINCTION)
+                        .prefix("fog density "),
+                )
+                .changed();
+            if changed {
+                match self.scene.set_fog_density(density) {
+                    Ok(()) => changes.fog = true,
+                    Err(e) => self.message = Some((e.to_string(), true)),
+                }
+            }
+        }
+    }
+
     fn camera_controls(&mut self, ui: &mut egui::Ui, changes: &mut Changes) {
         ui.label(RichText::new("Camera").strong());
         let before = self.camera;
@@ -202,6 +316,28 @@ impl PanelState {
                 .clamping(SliderClamping::Always)
                 .text("field of view °"),
         );
+        let extent = self
+            .scene
+            .bounds()
+            .map_or(1.0, |b| (b.max - b.min).length().max(1e-6));
+        ui.horizontal(|ui| {
+            ui.add(
+                DragValue::new(&mut c.aperture)
+                    .speed(extent * 1e-3)
+                    .range(0.0..=prism::limits::MAX_COORDINATE as f32)
+                    .prefix("aperture "),
+            );
+            let step = c.focus_distance * 0.01;
+            ui.add(
+                DragValue::new(&mut c.focus_distance)
+                    .speed(step)
+                    .range(prism::limits::MIN_LENGTH as f32..=prism::limits::MAX_COORDINATE as f32)
+                    .prefix("focus "),
+            );
+        });
+        if c.aperture > 0.0 {
+            ui.small("Click the image to focus on what is there.");
+        }
         if ui.button("Reset camera").clicked() {
             c = self.initial_camera;
         }

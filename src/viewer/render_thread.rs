@@ -3,7 +3,7 @@
 //! request, cancels the pass in flight at the next band of rows. Scenes are prepared here,
 //! never on the UI thread, and an appearance edit changes a table in place.
 
-use prism::appearance::Material;
+use prism::appearance::{Fog, Light, Material};
 use prism::camera::Camera;
 use prism::render::{PassOutcome, ProgressiveRender, RenderSettings};
 use prism::scene::{PreparedScene, Scene};
@@ -29,6 +29,18 @@ pub enum Request {
         moving: bool,
     },
     Settings(RenderSettings),
+    /// Light `index` changed (already validated) but not its shadow-ray end point.
+    Light {
+        index: usize,
+        light: Light,
+    },
+    /// The fog changed (already validated).
+    Fog(Option<Fog>),
+    /// Focus the lens on what lies under image point (x, y), in pixels.
+    FocusAt {
+        x: f32,
+        y: f32,
+    },
 }
 
 /// What the render thread reports alongside each image.
@@ -45,6 +57,9 @@ pub struct Status {
     pub active_pixels: usize,
     pub total_pixels: usize,
     pub preview: bool,
+    /// The lens's focus distance in the render (the render thread sets it on a focus
+    /// click); 0 in a preview's status.
+    pub focus_distance: f32,
     /// Why the last pass failed (a panic in the tracer): shown in the panel, and the
     /// viewer's exit code reports it.
     pub error: Option<String>,
@@ -214,6 +229,21 @@ impl Worker {
                 self.job.set_camera(camera);
             }
             Request::Settings(settings) => self.job.set_settings(settings),
+            Request::Light { index, light } => {
+                self.job.edit_appearance(|a| a.set_light(index, light))
+            }
+            Request::Fog(fog) => self.job.edit_appearance(|a| a.set_fog(fog)),
+            Request::FocusAt { x, y } => {
+                let mut camera = *self.job.camera();
+                let s = self.job.settings();
+                let rays = camera.rays(s.width, s.height);
+                if let Some(depth) = self.job.scene().depth_at(&rays, x, y) {
+                    camera.focus_distance = depth;
+                    if camera.check().is_ok() {
+                        self.job.set_camera(camera);
+                    }
+                }
+            }
         }
     }
 
@@ -275,6 +305,7 @@ impl Worker {
             },
             total_pixels: (width * height) as usize,
             preview: false,
+            focus_distance: self.job.camera().focus_distance,
             error: None,
         };
         self.store(rgba, width, height, status);
