@@ -119,3 +119,30 @@ fn fresnel_needs_a_refractive_material() {
         );
     }
 }
+
+/// Energy is conserved: the reflectance prism uses plus the transmittance computed on its own
+/// from the Fresnel transmission amplitudes, T = (η₂ cos θt / η₁ cos θi)·(t_s² + t_p²)/2, is 1 at
+/// every angle below the critical one, from either side; past it, all is reflected.
+#[test]
+fn reflectance_and_transmittance_sum_to_one() {
+    for (n1, n2) in [(1.0f64, 1.5f64), (1.5, 1.0), (1.33, 1.5), (1.0, 2.4)] {
+        for step in 0..90 {
+            let theta_i = (step as f64).to_radians();
+            let (cos_i, sin_i) = (theta_i.cos(), theta_i.sin());
+            let sin_t = n1 / n2 * sin_i;
+            let r = prism::appearance::fresnel_reflectance(cos_i as f32, (n1 / n2) as f32) as f64;
+            if sin_t >= 1.0 {
+                assert_eq!(r, 1.0, "{n1} → {n2} at {step}°: total internal reflection");
+                continue;
+            }
+            let cos_t = (1.0 - sin_t * sin_t).sqrt();
+            let ts = 2.0 * n1 * cos_i / (n1 * cos_i + n2 * cos_t);
+            let tp = 2.0 * n1 * cos_i / (n2 * cos_i + n1 * cos_t);
+            let t = n2 * cos_t / (n1 * cos_i) * 0.5 * (ts * ts + tp * tp);
+            assert!(
+                (r + t - 1.0).abs() < 1e-5,
+                "{n1} → {n2} at {step}°: R {r} + T {t}"
+            );
+        }
+    }
+}

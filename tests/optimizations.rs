@@ -230,3 +230,38 @@ fn rays_inside_isolated_solids_find_what_the_bvh_finds() {
         );
     }
 }
+
+/// Under area, sphere and spot lights, with every shortcut on, the image is the one each
+/// shortcut's unoptimised path draws: the spotlight's light buffer and the first-hit tiles
+/// serve it, the any-hit path answers the area lights' shadow rays, which end at their own
+/// sampled points, and the soft-shadow scene is opaque, so the any-hit path is taken.
+#[test]
+fn soft_shadows_draw_the_same_image_with_every_shortcut_off() {
+    let scene = prism::scene::parse_scene(
+        include_str!("../assets/scenes/soft_shadows.toml"),
+        std::path::Path::new("soft_shadows.toml"),
+        std::path::Path::new("."),
+    )
+    .unwrap();
+    let mut s = RenderSettings::new(160, 100, 2);
+    s.samples = Some(16);
+    let all = prepared(&scene, |_| {});
+    assert!(!all.appearance.shadow_filters().any_transmission());
+    let reference = image(all, scene.camera, s);
+    for (what, off) in [
+        (
+            "the any-hit shadow path",
+            (|o: &mut AccelOptions| o.any_hit_shadows = false) as fn(&mut AccelOptions),
+        ),
+        ("the light buffers", |o| o.light_buffers = false),
+        ("the first-hit tiles", |o| o.first_hit_tiles = false),
+        ("the BVH", |o| o.bvh = false),
+    ] {
+        let without = image(prepared(&scene, off), scene.camera, s);
+        assert_eq!(
+            largest_difference(&reference, &without),
+            0,
+            "without {what}"
+        );
+    }
+}

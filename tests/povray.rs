@@ -3,6 +3,9 @@
 //! where decides a pixel), one sample at each pixel's centre, must give the same image in
 //! both. POV-Ray's `rotate <x, y, z>` turns about x, then y, then z, as prism's does.
 //!
+//! The soft shadows of area lights are checked against POV-Ray's `area_light` too: prism's
+//! light colour is the whole light's, spread over its area, as POV-Ray's is.
+//!
 //! Needs `povray` (`.ci/run` installs it). Without it the test says so and passes, unless
 //! PRISM_REQUIRE_POVRAY is set, as it is in CI.
 
@@ -103,8 +106,8 @@ fn povray_scene() -> String {
     s
 }
 
-#[test]
-fn every_shape_draws_as_povray_draws_it() {
+/// Whether POV-Ray can be run; without it a test passes, unless CI requires it.
+fn povray_available() -> bool {
     let available = Command::new("sh")
         .args(["-c", "command -v povray"])
         .output()
@@ -115,18 +118,22 @@ fn every_shape_draws_as_povray_draws_it() {
             "the POV-Ray comparison needs povray: run .ci/run"
         );
         eprintln!("skipping the POV-Ray comparison: povray is not installed");
-        return;
     }
+    available
+}
+
+/// POV-Ray's image of `scene` at `w` × `h`, one ray through each pixel's centre, linear.
+fn povray_render(scene: &str, w: u32, h: u32) -> image::RgbImage {
     let dir = tempfile::tempdir().unwrap();
-    let pov = dir.path().join("shapes.pov");
-    std::fs::write(&pov, povray_scene()).unwrap();
+    let pov = dir.path().join("scene.pov");
+    std::fs::write(&pov, scene).unwrap();
     let out = dir.path().join("pov.png");
     let run = Command::new("povray")
         .arg(format!("+I{}", pov.display()))
         .arg(format!("+O{}", out.display()))
         .args([
-            &format!("+W{W}"),
-            &format!("+H{H}"),
+            &format!("+W{w}"),
+            &format!("+H{h}"),
             "-A",
             "-D",
             "File_Gamma=1.0",
@@ -138,19 +145,34 @@ fn every_shape_draws_as_povray_draws_it() {
         "povray failed: {}",
         String::from_utf8_lossy(&run.stderr)
     );
-    let reference = image::open(&out).unwrap().to_rgb8();
+    image::open(&out).unwrap().to_rgb8()
+}
 
-    let scene = parse_scene(&prism_scene(), Path::new("shapes.toml"), Path::new(".")).unwrap();
-    let mut settings = RenderSettings::new(W, H, 1);
+/// prism's image of scene `text` at `w` × `h`, every subsample at each pixel's centre (as
+/// POV-Ray's one ray there), `samples` of them (one without).
+fn prism_render(text: &str, w: u32, h: u32, samples: Option<u32>) -> image::RgbImage {
+    let scene = parse_scene(text, Path::new("povray.toml"), Path::new(".")).unwrap();
+    let mut settings = RenderSettings::new(w, h, 1);
     settings.layout = SampleLayout::Grid;
-    let ours = render::render(
+    settings.samples = samples;
+    render::render(
         Arc::new(PreparedScene::new(&scene)),
         scene.camera,
         settings,
         |_, _| {},
     )
     .accumulator()
-    .to_rgb8();
+    .to_rgb8()
+}
+
+#[test]
+fn every_shape_draws_as_povray_draws_it() {
+    if !povray_available() {
+        return;
+    }
+    let reference = povray_render(&povray_scene(), W, H);
+
+    let ours = prism_render(&prism_scene(), W, H, None);
 
     // Every shape is in the picture, in its own colour.
     for colour in [[255, 0, 0], [0, 255, 0], [0, 0, 255], [128, 128, 128]] {
@@ -167,5 +189,76 @@ fn every_shape_draws_as_povray_draws_it() {
         differing <= 8,
         "{differing} of {} pixels differ from POV-Ray's",
         W * H
+    );
+}
+
+/// A white matte floor and a black ball under a 2 × 2 area light, lit by nothing else:
+/// prism (256 light samples at each pixel's centre) against POV-Ray's `area_light` (a 33 × 33
+/// grid of point lights sharing its colour, each lighting by its own direction:
+/// `area_illumination on`). The penumbra and the light around it must match; a light a fifth
+/// larger in prism alone must not. (The ball is black because at its terminator, where part
+/// of the light lies below its horizon, POV-Ray is darker than the exact integral of the light
+/// over the rectangle by up to ten 8-bit levels, and prism is within one of it.)
+#[test]
+fn area_light_soft_shadows_match_povrays() {
+    if !povray_available() {
+        return;
+    }
+    let (w, h) = (160u32, 120u32);
+    let aspect = w as f64 / h as f64;
+    let pov = format!(
+        "#version 3.7;\nglobal_settings {{ assumed_gamma 1.0 ambient_light 0 }}\n\
+         camera {{ perspective location <0, 6, 7> look_at <0, 0.5, 0> right -x * {aspect} up y \
+         angle 2 * degrees(atan(tan(radians(20)) * {aspect})) }}\n\
+         background {{ rgb 0 }}\n\
+         light_source {{ <0, 4, 0> color rgb 0.9 \
+         area_light <2, 0, 0>, <0, 0, 2>, 33, 33 area_illumination on }}\n\
+         #declare F = finish {{ ambient 0 diffuse 1 specular 0 phong 0 }};\n\
+         plane {{ y, 0 pigment {{ rgb 1 }} finish {{ F }} }}\n\
+         sphere {{ <0.3, 1, 0.2>, 0.7 pigment {{ rgb 0 }} finish {{ F }} }}\n"
+    );
+    let reference = povray_render(&pov, w, h);
+    let differing = |half: f32| {
+        let text = format!(
+            "[camera]\neye = [0, 6, 7]\nlook_at = [0, 0.5, 0]\nfov = 40\n\
+             [render]\nambient = [0, 0, 0]\nbackground = [0, 0, 0]\n\
+             [[lights]]\ntype = \"area\"\ncorner = [{c}, 4, {c}]\nedge_u = [{e}, 0, 0]\n\
+             edge_v = [0, 0, {e}]\ncolor = [0.9, 0.9, 0.9]\nvisible = false\n\
+             [materials.white]\ncolor = [1, 1, 1]\nambient = 0\nspecular = 0\n\
+             [materials.black]\ncolor = [0, 0, 0]\nambient = 0\nspecular = 0\n\
+             [[planes]]\npoint = [0, 0, 0]\nnormal = [0, 1, 0]\nmaterial = \"white\"\n\
+             [[spheres]]\ncenter = [0.3, 1, 0.2]\nradius = 0.7\nmaterial = \"black\"\n",
+            c = -half,
+            e = 2.0 * half
+        );
+        let ours = prism_render(&text, w, h, Some(256));
+        let diffs: Vec<u8> = ours
+            .pixels()
+            .zip(reference.pixels())
+            .map(|(a, b)| (0..3).map(|c| a[c].abs_diff(b[c])).max().unwrap())
+            .collect();
+        let mean = diffs.iter().map(|&d| d as f64).sum::<f64>() / diffs.len() as f64;
+        let far = diffs.iter().filter(|&&d| d > 4).count() as f64 / diffs.len() as f64;
+        (mean, far)
+    };
+    let (mean, far) = differing(1.0);
+    println!(
+        "area light: mean difference {mean:.3} levels, {:.3}% of pixels beyond 4",
+        far * 100.0
+    );
+    assert!(
+        mean < 0.4 && far < 0.006,
+        "mean {mean:.3} levels, {:.3}% beyond 4",
+        far * 100.0
+    );
+    let (mean, far) = differing(1.2);
+    println!(
+        "a larger light: mean difference {mean:.3} levels, {:.3}% beyond 4",
+        far * 100.0
+    );
+    assert!(
+        far > 0.02,
+        "a larger light went unnoticed: {:.3}% beyond 4",
+        far * 100.0
     );
 }

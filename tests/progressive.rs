@@ -238,3 +238,53 @@ fn light_ambient_background_and_depth_edits_draw_what_a_fresh_preparation_draws(
     );
     assert_eq!(job.accumulator(), fresh.accumulator());
 }
+
+/// Soft shadows are noise, not edges: with `samples` past the grid, the passes go on to the
+/// count asked for, and adaptive sampling (which in a noisy render stops a pixel only after
+/// two agreeing checks in a row) spends far fewer subsamples yet stays close to the full
+/// render.
+#[test]
+fn adaptive_sampling_of_soft_shadows_needs_two_agreeing_checks() {
+    let text = include_str!("../assets/scenes/soft_shadows.toml");
+    let scene = prism::scene::parse_scene(
+        text,
+        std::path::Path::new("soft_shadows.toml"),
+        std::path::Path::new("."),
+    )
+    .unwrap();
+    let prepared = Arc::new(PreparedScene::new(&scene));
+    let mut settings = RenderSettings::new(160, 100, 4);
+    settings.samples = Some(256);
+    let full = render::render(prepared.clone(), scene.camera, settings, |_, _| {});
+    assert_eq!(full.passes_done(), 256);
+    assert!(full.is_stochastic());
+    let adaptive = render::render(
+        prepared.clone(),
+        scene.camera,
+        RenderSettings {
+            adaptive: Some(AdaptiveSettings::default()),
+            ..settings
+        },
+        |_, _| {},
+    );
+    let rmse = |a: &render::Accumulator, b: &render::Accumulator| {
+        let sum: f64 = a
+            .pixels
+            .iter()
+            .zip(&b.pixels)
+            .map(|(p, q)| {
+                (p.mean().min(glam::Vec3::ONE) - q.mean().min(glam::Vec3::ONE)).length_squared()
+                    as f64
+            })
+            .sum();
+        (sum / (a.pixels.len() * 3) as f64).sqrt()
+    };
+    let spp = adaptive.samples_per_pixel();
+    let error = rmse(adaptive.accumulator(), full.accumulator());
+    println!("adaptive: {spp:.1} samples per pixel, RMSE {error:.5} against 256");
+    assert!(spp < 96.0, "{spp} samples per pixel");
+    assert!(error < 0.005, "RMSE {error}");
+    // The seed scene has no random numbers beyond the pixel positions.
+    let (seed, camera) = seed();
+    assert!(!ProgressiveRender::new(seed, camera, RenderSettings::new(8, 8, 2)).is_stochastic());
+}

@@ -172,6 +172,15 @@ impl Appearance {
         self.fog.as_ref()
     }
 
+    /// Whether shading draws random numbers: an area light or a glossy material. Its pixels
+    /// are then noisy as well as edged, which adaptive sampling must allow for.
+    pub fn is_stochastic(&self) -> bool {
+        self.lights
+            .iter()
+            .any(|l| matches!(l.kind, LightKind::Area { .. }))
+            || self.materials.iter().any(|m| m.roughness > 0.0)
+    }
+
     /// Whether some light shows its surface to rays.
     #[inline]
     pub fn any_emitter(&self) -> bool {

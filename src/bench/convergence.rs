@@ -33,10 +33,12 @@ pub struct Config {
     pub runs: usize,
 }
 
-struct Size {
-    width: u32,
-    height: u32,
-    reference_aa: u32,
+pub(super) struct Size {
+    pub width: u32,
+    pub height: u32,
+    pub reference_aa: u32,
+    /// Subsamples per pixel of the reference when not reference_aa² (`RenderSettings::samples`).
+    pub reference_samples: Option<u32>,
 }
 
 /// A way of sampling the seed scene, compared by the bench.
@@ -97,74 +99,48 @@ impl Strategy {
 }
 
 /// One measurement: a strategy's image after some passes.
-struct Point {
-    strategy: Strategy,
-    passes: u32,
-    samples_per_pixel: f64,
-    seconds: f64,
-    rmse: f64,
-    flip: f64,
+pub(super) struct Point {
+    /// The strategy's name.
+    pub name: &'static str,
+    pub passes: u32,
+    pub samples_per_pixel: f64,
+    pub seconds: f64,
+    pub rmse: f64,
+    pub flip: f64,
 }
 
-const NEVER: fn() -> bool = || false;
+/// When a strategy's error is measured.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Measure {
+    /// Once, on the finished image.
+    Finished,
+    /// After every pass.
+    EveryPass,
+    /// After passes 1, 2, 4, 8, … and the last.
+    PowersOfTwo,
+}
 
-pub fn run(cfg: Config) -> Result<()> {
-    let size = if cfg.quick {
-        Size {
-            width: 160,
-            height: 120,
-            reference_aa: 16,
-        }
-    } else {
-        Size {
-            width: 800,
-            height: 600,
-            reference_aa: 16,
-        }
+/// A strategy the bench times: its name, when its error is measured, and its settings.
+pub(super) struct Timed {
+    pub name: &'static str,
+    pub measure: Measure,
+    pub settings: RenderSettings,
+}
+
+/// Times each strategy's passes on `prepared` (`runs` times, interleaved), then replays
+/// each once untimed to measure its error against `reference`: the points, and the rays
+/// traced and their seconds over all timed passes.
+pub(super) fn measure(
+    prepared: &Arc<PreparedScene>,
+    camera: Camera,
+    strategies: &[Timed],
+    reference: &[Vec3],
+    runs: usize,
+) -> (Vec<Point>, RayCounts, f64) {
+    let reference_rgb8 = {
+        let s = &strategies[0].settings;
+        to_rgb8(reference, s.width, s.height)
     };
-    std::fs::create_dir_all(&cfg.out_dir)
-        .with_context(|| format!("cannot create {}", cfg.out_dir.display()))?;
-    let scene = prism::seed::scene()?;
-    let prepared = Arc::new(PreparedScene::new(&scene));
-    let reference = reference(prism::seed::SCENE_TOML, &prepared, scene.camera, &size)?;
-    let reference_rgb8 = to_rgb8(&reference, size.width, size.height);
-
-    let settings = |aa: u32, layout: SampleLayout, adaptive: Option<AdaptiveSettings>| {
-        let mut s = RenderSettings::new(size.width, size.height, aa);
-        s.layout = layout;
-        s.adaptive = adaptive;
-        s
-    };
-    let adaptive = Some(AdaptiveSettings {
-        tolerance: cfg.tolerance,
-        min_samples: cfg.min_samples,
-        edge_samples: cfg.edge_samples,
-        edge_contrast: cfg.edge_contrast,
-    });
-    // Each strategy with the settings of each image it makes.
-    let mut strategies = vec![(Strategy::SeedGrid, settings(2, SampleLayout::Grid, None))];
-    for n in [1, 2, 3, 4, 6, 8] {
-        strategies.push((Strategy::FixedGrid, settings(n, SampleLayout::Grid, None)));
-    }
-    strategies.extend([
-        (
-            Strategy::Progressive,
-            settings(8, SampleLayout::Stratified, None),
-        ),
-        (
-            Strategy::ProgressiveCentres,
-            settings(8, SampleLayout::Grid, None),
-        ),
-        (
-            Strategy::Adaptive,
-            settings(8, SampleLayout::Stratified, adaptive),
-        ),
-        (
-            Strategy::AdaptiveCentres,
-            settings(8, SampleLayout::Grid, adaptive),
-        ),
-    ]);
-
     // Time: each strategy's passes back to back with nothing in between, `runs` times,
     // interleaved strategy by strategy so that a slow spell of the shared machine falls on
     // all of them alike. Measuring the error between timed passes would evict the scene and
@@ -172,10 +148,10 @@ pub fn run(cfg: Config) -> Result<()> {
     let mut rays = RayCounts::default();
     let mut ray_seconds = 0.0;
     let mut elapsed: Vec<Vec<Vec<f64>>> = vec![Vec::new(); strategies.len()];
-    for run in 0..cfg.runs {
-        eprintln!("timing run {} of {}", run + 1, cfg.runs);
-        for ((_, settings), runs) in strategies.iter().zip(&mut elapsed) {
-            let mut job = ProgressiveRender::new(prepared.clone(), scene.camera, *settings);
+    for run in 0..runs {
+        eprintln!("timing run {} of {}", run + 1, runs);
+        for (timed, runs) in strategies.iter().zip(&mut elapsed) {
+            let mut job = ProgressiveRender::new(prepared.clone(), camera, timed.settings);
             let mut seconds = 0.0;
             let mut cumulative = Vec::new();
             loop {
@@ -196,24 +172,29 @@ pub fn run(cfg: Config) -> Result<()> {
     // Error: one untimed replay of each strategy. A render depends only on the scene, the
     // settings and the pass index, so the replay's images are the timed runs' images.
     let mut points = Vec::new();
-    for (&(strategy, settings), runs) in strategies.iter().zip(&elapsed) {
-        let mut job = ProgressiveRender::new(prepared.clone(), scene.camera, settings);
+    for (timed, runs) in strategies.iter().zip(&elapsed) {
+        let mut job = ProgressiveRender::new(prepared.clone(), camera, timed.settings);
         while let PassOutcome::Finished(_) = job.step(&NEVER) {
-            if !(strategy.every_pass() || job.is_converged()) {
+            let pass = job.passes_done();
+            let wanted = match timed.measure {
+                Measure::Finished => job.is_converged(),
+                Measure::EveryPass => true,
+                Measure::PowersOfTwo => pass.is_power_of_two() || job.is_converged(),
+            };
+            if !wanted {
                 continue;
             }
-            let pass = job.passes_done() as usize;
-            let mut times: Vec<f64> = runs.iter().map(|r| r[pass - 1]).collect();
+            let mut times: Vec<f64> = runs.iter().map(|r| r[pass as usize - 1]).collect();
             times.sort_by(f64::total_cmp);
             let seconds = times[times.len() / 2];
-            let (rmse, flip) = errors(job.accumulator(), &reference, &reference_rgb8);
+            let (rmse, flip) = errors(job.accumulator(), reference, &reference_rgb8);
             eprintln!(
-                "{:>26}: pass {pass:>2}, {seconds:>7.3} s, RMSE {rmse:.5}, FLIP {flip:.5}",
-                strategy.name()
+                "{:>26}: pass {pass:>3}, {seconds:>7.3} s, RMSE {rmse:.5}, FLIP {flip:.5}",
+                timed.name
             );
             points.push(Point {
-                strategy,
-                passes: job.passes_done(),
+                name: timed.name,
+                passes: pass,
                 samples_per_pixel: job.samples_per_pixel(),
                 seconds,
                 rmse,
@@ -221,9 +202,92 @@ pub fn run(cfg: Config) -> Result<()> {
             });
         }
     }
+    (points, rays, ray_seconds)
+}
+
+pub(super) const NEVER: fn() -> bool = || false;
+
+pub fn run(cfg: Config) -> Result<()> {
+    let size = if cfg.quick {
+        Size {
+            width: 160,
+            height: 120,
+            reference_aa: 16,
+            reference_samples: None,
+        }
+    } else {
+        Size {
+            width: 800,
+            height: 600,
+            reference_aa: 16,
+            reference_samples: None,
+        }
+    };
+    std::fs::create_dir_all(&cfg.out_dir)
+        .with_context(|| format!("cannot create {}", cfg.out_dir.display()))?;
+    let scene = prism::seed::scene()?;
+    let prepared = Arc::new(PreparedScene::new(&scene));
+    let reference = reference(prism::seed::SCENE_TOML, &prepared, scene.camera, &size)?;
+
+    let settings = |aa: u32, layout: SampleLayout, adaptive: Option<AdaptiveSettings>| {
+        let mut s = RenderSettings::new(size.width, size.height, aa);
+        s.layout = layout;
+        s.adaptive = adaptive;
+        s
+    };
+    let adaptive = Some(AdaptiveSettings {
+        tolerance: cfg.tolerance,
+        min_samples: cfg.min_samples,
+        edge_samples: cfg.edge_samples,
+        edge_contrast: cfg.edge_contrast,
+    });
+    // Each strategy with the settings of each image it makes.
+    let timed = |strategy: Strategy, settings| Timed {
+        name: strategy.name(),
+        measure: if strategy.every_pass() {
+            Measure::EveryPass
+        } else {
+            Measure::Finished
+        },
+        settings,
+    };
+    let mut strategies = vec![timed(
+        Strategy::SeedGrid,
+        settings(2, SampleLayout::Grid, None),
+    )];
+    for n in [1, 2, 3, 4, 6, 8] {
+        strategies.push(timed(
+            Strategy::FixedGrid,
+            settings(n, SampleLayout::Grid, None),
+        ));
+    }
+    strategies.extend([
+        timed(
+            Strategy::Progressive,
+            settings(8, SampleLayout::Stratified, None),
+        ),
+        timed(
+            Strategy::ProgressiveCentres,
+            settings(8, SampleLayout::Grid, None),
+        ),
+        timed(
+            Strategy::Adaptive,
+            settings(8, SampleLayout::Stratified, adaptive),
+        ),
+        timed(
+            Strategy::AdaptiveCentres,
+            settings(8, SampleLayout::Grid, adaptive),
+        ),
+    ]);
+    let (points, rays, ray_seconds) =
+        measure(&prepared, scene.camera, &strategies, &reference, cfg.runs);
 
     write_csv(&cfg.out_dir.join("convergence.csv"), &points)?;
-    plot(&cfg.out_dir.join("convergence.svg"), &points)?;
+    let series: Vec<(&str, RGBColor)> = Strategy::ALL
+        .iter()
+        .map(|s| (s.name(), s.color()))
+        .collect();
+    plot(&cfg.out_dir.join("convergence.svg"), &points, &series)?;
     let headline = headline(&cfg, &scene, &prepared, &size, &points, rays, ray_seconds)?;
     std::fs::write(cfg.out_dir.join("results.md"), &headline)?;
     println!("{headline}");
@@ -236,7 +300,7 @@ pub fn run(cfg: Config) -> Result<()> {
 
 /// The converged reference (reference_aa² subsamples, every secondary ray traced), cached
 /// under target/ by scene text and size.
-fn reference(
+pub(super) fn reference(
     text: &str,
     scene: &Arc<PreparedScene>,
     camera: Camera,
@@ -248,6 +312,7 @@ fn reference(
         size.width,
         size.height,
         size.reference_aa,
+        size.reference_samples,
         env!("CARGO_PKG_VERSION"),
     )
         .hash(&mut hasher);
@@ -270,6 +335,7 @@ fn reference(
     }
     let start = Instant::now();
     let mut settings = RenderSettings::new(size.width, size.height, size.reference_aa);
+    settings.samples = size.reference_samples;
     settings.min_weight = 0.0;
     let mut job = ProgressiveRender::new(scene.clone(), camera, settings);
     while let PassOutcome::Finished(_) = job.step(&NEVER) {}
@@ -282,7 +348,7 @@ fn reference(
     prism::render::write_bytes(&cache, &bytes)?;
     eprintln!(
         "reference: {} subsamples per pixel in {:.1} s, cached {}",
-        size.reference_aa * size.reference_aa,
+        settings.total_passes(),
         start.elapsed().as_secs_f64(),
         cache.display()
     );
@@ -313,25 +379,21 @@ fn errors(acc: &Accumulator, reference: &[Vec3], reference_rgb8: &[u8]) -> (f64,
     (rmse, flip)
 }
 
-fn write_csv(path: &Path, points: &[Point]) -> Result<()> {
+pub(super) fn write_csv(path: &Path, points: &[Point]) -> Result<()> {
     let mut csv = String::from("strategy,passes,samples_per_pixel,seconds,rmse,mean_flip\n");
     for p in points {
         writeln!(
             csv,
             "{},{},{:.4},{:.6},{:.6},{:.6}",
-            p.strategy.name(),
-            p.passes,
-            p.samples_per_pixel,
-            p.seconds,
-            p.rmse,
-            p.flip
+            p.name, p.passes, p.samples_per_pixel, p.seconds, p.rmse, p.flip
         )?;
     }
     prism::render::write_bytes(path, csv.as_bytes())?;
     Ok(())
 }
 
-fn plot(path: &Path, points: &[Point]) -> Result<()> {
+/// Error against time, one curve per entry of `series` (a strategy's name and colour).
+pub(super) fn plot(path: &Path, points: &[Point], series: &[(&str, RGBColor)]) -> Result<()> {
     let root = SVGBackend::new(path, (1100, 460)).into_drawing_area();
     root.fill(&WHITE)?;
     let (left, right) = root.split_horizontally(550);
@@ -360,16 +422,15 @@ fn plot(path: &Path, points: &[Point]) -> Result<()> {
             .x_desc("seconds (2 threads, log)")
             .y_desc(format!("{name} against the reference (log)"))
             .draw()?;
-        for strategy in Strategy::ALL {
-            let color = strategy.color();
+        for &(name, color) in series {
             let series: Vec<(f64, f64)> = points
                 .iter()
-                .filter(|p| p.strategy == strategy)
+                .filter(|p| p.name == name)
                 .map(|p| (p.seconds, value(p)))
                 .collect();
             chart
                 .draw_series(LineSeries::new(series.clone(), color.stroke_width(2)))?
-                .label(strategy.name())
+                .label(name)
                 .legend(move |(x, y)| {
                     PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
                 });
@@ -427,10 +488,8 @@ fn cache_dir() -> PathBuf {
     base.join("prism/bench")
 }
 
-fn first_below(points: &[Point], strategy: Strategy, flip: f64) -> Option<&Point> {
-    points
-        .iter()
-        .find(|p| p.strategy == strategy && p.flip <= flip)
+pub(super) fn first_below<'p>(points: &'p [Point], name: &str, flip: f64) -> Option<&'p Point> {
+    points.iter().find(|p| p.name == name && p.flip <= flip)
 }
 
 fn headline(
@@ -600,7 +659,7 @@ fn grid_error_section(md: &mut String, points: &[Point]) -> Result<()> {
     // Time to reach the error of the full 4×4 grid.
     let grid4 = points
         .iter()
-        .find(|p| p.strategy == Strategy::FixedGrid && p.passes == 16)
+        .find(|p| p.name == Strategy::FixedGrid.name() && p.passes == 16)
         .context("the 4×4 grid was measured")?;
     writeln!(
         md,
@@ -618,7 +677,7 @@ fn grid_error_section(md: &mut String, points: &[Point]) -> Result<()> {
     )?;
     for strategy in Strategy::ALL.into_iter().filter(|s| s.every_pass()) {
         let name = strategy.name();
-        match first_below(points, strategy, grid4.flip) {
+        match first_below(points, name, grid4.flip) {
             Some(p) => writeln!(
                 md,
                 "| {name} | {:.3} s | {:.2} | {:.0}% |",

@@ -5,6 +5,7 @@ mod edit;
 mod numerics;
 mod scale;
 mod scenes;
+mod soft_shadows;
 
 use anyhow::Result;
 
@@ -74,6 +75,20 @@ pub enum BenchKind {
         #[arg(long, default_value_t = 7)]
         runs: usize,
     },
+    /// Error against time for the sampling strategies on a scene of soft shadows
+    /// (docs/benchmarks/soft_shadows.md).
+    SoftShadows {
+        /// A 160×100 image against a 1,024-sample reference: proves the bench works.
+        #[arg(long)]
+        quick: bool,
+        /// Where the CSV, the plot and the table go (default: prism-bench/soft-shadows in
+        /// the working directory; the docs' come from `--out docs/benchmarks`).
+        #[arg(long)]
+        out: Option<std::path::PathBuf>,
+        /// Timed runs per figure (the median is reported).
+        #[arg(long, default_value_t = 5)]
+        runs: usize,
+    },
 }
 
 pub fn run(args: BenchArgs) -> Result<()> {
@@ -84,6 +99,12 @@ pub fn run(args: BenchArgs) -> Result<()> {
 fn run_in_pool(args: BenchArgs) -> Result<()> {
     match args.what {
         BenchKind::Numerics { runs } => numerics::run(runs.max(1)),
+        BenchKind::SoftShadows { quick, out, runs } => soft_shadows::run(soft_shadows::Config {
+            quick,
+            runs: if quick { runs.clamp(1, 2) } else { runs.max(1) },
+            out_dir: out
+                .unwrap_or_else(|| std::path::Path::new("prism-bench").join("soft-shadows")),
+        }),
         BenchKind::Scale { quick, out, runs } => scale::run(scale::Config {
             quick,
             runs: runs.max(1),

@@ -37,6 +37,9 @@ pub struct ProgressiveRender {
     accumulator: Accumulator,
     /// Pixels still refining (all of them unless adaptive sampling has stopped some).
     active: Vec<bool>,
+    /// Whether each pixel's estimate was within tolerance at the last check: in a noisy
+    /// (stochastic) render a pixel stops only after two checks in a row.
+    settled_before: Vec<bool>,
     active_count: usize,
     passes_done: u32,
     /// The accumulator holds a partial pass and must be cleared before the next one.
@@ -57,6 +60,7 @@ impl ProgressiveRender {
             view: None,
             accumulator: Accumulator::new(settings.width, settings.height),
             active: vec![true; pixels],
+            settled_before: vec![false; pixels],
             active_count: pixels,
             scene,
             camera,
@@ -72,6 +76,7 @@ impl ProgressiveRender {
     pub fn restart(&mut self) {
         self.accumulator.clear();
         self.active.fill(true);
+        self.settled_before.fill(false);
         self.active_count = self.active.len();
         self.passes_done = 0;
         self.dirty = false;
@@ -155,7 +160,10 @@ impl ProgressiveRender {
     /// one between it and a neighbour when either of them is mixed (its own subsamples
     /// disagree) or their signatures differ, and when their means differ by more than
     /// `edge_contrast`. A stopped pixel never restarts, so every active pixel holds exactly
-    /// subsamples 0 .. passes_done.
+    /// subsamples 0 .. passes_done. When the render is stochastic (soft shadows, a lens,
+    /// glossy lobes: `is_stochastic`), a pixel's noise can make the two halves agree by
+    /// chance, so it stops only when its estimate is within tolerance at two power-of-two
+    /// checks in a row.
     fn update_active(&mut self) {
         let Some(adaptive) = self.settings.adaptive else {
             return;
@@ -166,20 +174,24 @@ impl ProgressiveRender {
             return;
         }
         let near_edges_decided = n >= adaptive.edge_samples;
+        let confirm = self.is_stochastic();
         let (w, h) = (self.settings.width as usize, self.settings.height as usize);
         let pixels = &self.accumulator.pixels;
         let count: usize = self
             .active
             .par_chunks_mut(w)
+            .zip(self.settled_before.par_chunks_mut(w))
             .enumerate()
-            .map(|(y, row)| {
+            .map(|(y, (row, before))| {
                 let mut count = 0;
-                for (x, active) in row.iter_mut().enumerate() {
+                for (x, (active, before)) in row.iter_mut().zip(before).enumerate() {
                     if !*active {
                         continue;
                     }
                     let p = &pixels[y * w + x];
-                    let settled = p.error_estimate() <= adaptive.tolerance;
+                    let within = p.error_estimate() <= adaptive.tolerance;
+                    let settled = within && (!confirm || *before);
+                    *before = within;
                     let beside_edge = settled
                         && !near_edges_decided
                         && beside_edge(pixels, w, h, x, y, adaptive.edge_contrast);
@@ -190,6 +202,12 @@ impl ProgressiveRender {
             })
             .sum();
         self.active_count = count;
+    }
+
+    /// Whether the render draws random numbers beyond the pixel positions (a lens, an area
+    /// light, a glossy material), so that its pixels are noisy.
+    pub fn is_stochastic(&self) -> bool {
+        self.camera.aperture > 0.0 || self.scene.appearance.is_stochastic()
     }
 
     /// Whether every pixel has all its subsamples, or adaptive sampling has stopped them all.

@@ -110,6 +110,20 @@ impl PanelState {
                     .clamping(SliderClamping::Always)
                     .text("level N (N×N)"),
             );
+            // Past the N×N grid for noisy effects (soft shadows, a lens, glossy lobes).
+            let mut custom = self.samples.is_some();
+            let mut count = self.samples.unwrap_or(self.aa * self.aa);
+            let samples = ui
+                .horizontal(|ui| {
+                    let c = ui.checkbox(&mut custom, "samples per pixel");
+                    let n = ui.add_enabled(
+                        custom,
+                        DragValue::new(&mut count).range(prism::limits::SAMPLES),
+                    );
+                    c.changed() || n.changed()
+                })
+                .inner;
+            self.samples = custom.then_some(count);
             let adaptive = ui.checkbox(&mut self.adaptive, "adaptive sampling");
             let tol = ui.add_enabled(
                 self.adaptive,
@@ -121,7 +135,7 @@ impl PanelState {
             if !self.tolerance.is_finite() || self.tolerance <= 0.0 {
                 self.tolerance = prism::render::AdaptiveSettings::default().tolerance;
             }
-            changes.settings = aa.changed() || adaptive.changed() || tol.changed();
+            changes.settings = aa.changed() || samples || adaptive.changed() || tol.changed();
             ui.separator();
             self.camera_controls(ui, &mut changes);
             ui.separator();

@@ -18,16 +18,6 @@ mkdir -p "$work/shots"
 pid=$!
 trap 'kill $pid 2>/dev/null || true' EXIT
 
-# wait_for TEXT COUNT SECONDS: until the log holds COUNT lines with TEXT.
-wait_for() {
-    for _ in $(seq $(($3 * 10))); do
-        if [ "$(grep -c "$1" "$log" || true)" -ge "$2" ]; then return 0; fi
-        if ! kill -0 $pid 2>/dev/null; then echo "viewer died:"; cat "$log"; exit 1; fi
-        sleep 0.1
-    done
-    echo "timed out waiting for '$1' x$2:"; cat "$log"; exit 1
-}
-
 find_window
 xdotool windowfocus --sync "$window"
 
@@ -56,12 +46,6 @@ wait_for "converged" 3 120
 xdotool windowfocus --sync "$window"
 xdotool key --window "$window" Tab
 sleep 0.3
-# The window may vanish before xdotool sends the key release; the check below decides.
-xdotool key --window "$window" ctrl+q || true
-for _ in $(seq 100); do
-    kill -0 $pid 2>/dev/null || break
-    sleep 0.1
-done
-if kill -0 $pid 2>/dev/null; then echo "viewer did not quit on Ctrl+Q"; exit 1; fi
+quit_with_ctrl_q
 wait $pid
 echo "viewer exited cleanly"

@@ -16,3 +16,26 @@ find_window() {
     done
     echo "no window appeared:"; cat "$log"; exit 1
 }
+
+# wait_for TEXT COUNT SECONDS: until the viewer's log holds COUNT lines with TEXT (the
+# viewer runs as $pid), or prints the log and exits.
+wait_for() {
+    for _ in $(seq $(($3 * 10))); do
+        if [ "$(grep -c "$1" "$log" || true)" -ge "$2" ]; then return 0; fi
+        if ! kill -0 "$pid" 2>/dev/null; then echo "viewer died:"; cat "$log"; exit 1; fi
+        sleep 0.1
+    done
+    echo "timed out waiting for '$1' x$2:"; cat "$log"; exit 1
+}
+
+# quit_with_ctrl_q: sends Ctrl+Q to $window and waits up to 10 s for the viewer to exit,
+# or exits with a message.
+quit_with_ctrl_q() {
+    # The window may vanish before xdotool sends the key release; the check below decides.
+    xdotool key --window "$window" ctrl+q || true
+    for _ in $(seq 100); do
+        kill -0 "$pid" 2>/dev/null || break
+        sleep 0.1
+    done
+    if kill -0 "$pid" 2>/dev/null; then echo "viewer did not quit on Ctrl+Q"; exit 1; fi
+}

@@ -22,12 +22,7 @@ grep -q "the render failed" "$log" || { echo "no failure reported:"; cat "$log";
 sleep 1
 import -window root "$work/panic.png"
 xdotool windowfocus --sync "$window"
-xdotool key --window "$window" ctrl+q || true
-for _ in $(seq 100); do
-    kill -0 $pid 2>/dev/null || break
-    sleep 0.1
-done
-if kill -0 $pid 2>/dev/null; then echo "viewer did not quit on Ctrl+Q"; exit 1; fi
+quit_with_ctrl_q
 set +e
 wait $pid
 code=$?
