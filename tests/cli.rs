@@ -370,6 +370,39 @@ fn viewer_without_a_display_points_to_render() {
     assert!(!stderr.contains("panicked"), "{stderr}");
 }
 
+/// Plain `prism` takes the options of `prism view` (and its scene), checked as `view`
+/// checks them, before any window opens.
+#[cfg(feature = "viewer")]
+#[test]
+fn plain_prism_takes_the_viewers_options() {
+    let case = Case::new();
+    let missing = case.dir.path().join("no-such-folder");
+    for args in [
+        vec!["--screenshot-dir", missing.to_str().unwrap()],
+        vec!["view", "--screenshot-dir", missing.to_str().unwrap()],
+    ] {
+        let out = prism_without_display(&args);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(
+            stderr.contains("screenshots cannot be saved here"),
+            "{stderr}"
+        );
+    }
+    let out = prism_without_display(&["--aa", "9"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("1..=8"));
+    let scene = case.scene(&replace("radius = 1", "radius = -1"));
+    let out = prism_without_display(&["--width", "200", scene.to_str().unwrap()]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("scene.toml:19"), "{stderr}");
+    // A good scene gets as far as the window, which this test's environment cannot open.
+    let good = case.scene(GOOD);
+    let out = prism_without_display(&["--width", "200", good.to_str().unwrap()]);
+    assert!(String::from_utf8_lossy(&out.stderr).contains("cannot open a window"));
+}
+
 #[test]
 fn bad_up_vectors_are_rejected() {
     let case = Case::new();

@@ -110,7 +110,7 @@ fn viewer_window_end_to_end() {
     assert!(stdout.contains("viewer exited cleanly"), "{stdout}");
 
     let taken = shots(&work.path().join("shots"));
-    assert_eq!(taken.len(), 2, "{taken:?}");
+    assert_eq!(taken.len(), 3, "{taken:?}");
     for shot in &taken {
         let name = shot.file_name().unwrap().to_string_lossy();
         assert!(
@@ -144,6 +144,15 @@ fn viewer_window_end_to_end() {
         moved > 0.05,
         "only {:.2}% of pixels changed after W",
         moved * 100.0
+    );
+
+    // A tap of D (shorter than a frame) moved the camera a step.
+    let third = image::open(&taken[2]).unwrap().into_rgb8();
+    let tapped = differing(&third, &second, 8);
+    assert!(
+        tapped > 0.01,
+        "only {:.2}% of pixels changed after a tap of D",
+        tapped * 100.0
     );
 
     // The whole screen shows the panel (not black) beside the image.

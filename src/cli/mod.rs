@@ -9,10 +9,20 @@ use prism::scene::{Scene, SceneError};
 use std::path::PathBuf;
 
 #[derive(Parser, Debug)]
-#[command(name = "prism", version, about = "A fast and accurate Whitted ray tracer", long_about = None)]
+#[command(
+    name = "prism",
+    version,
+    about = "A fast and accurate ray tracer with an interactive progressive viewer",
+    long_about = None,
+    // `prism [VIEW OPTIONS] [SCENE]` is `prism view …`: the viewer is the default command.
+    args_conflicts_with_subcommands = true
+)]
 pub struct Args {
     #[command(subcommand)]
     pub command: Option<Command>,
+    /// Without a command: the options of `prism view`.
+    #[command(flatten)]
+    pub view: ViewArgs,
 }
 
 #[derive(Subcommand, Debug)]
@@ -65,7 +75,7 @@ pub fn run(args: Args) -> Result<()> {
             exit_on_signals()?;
             crate::bench::run(a)
         }
-        None => view(ViewArgs::default()),
+        None => view(args.view),
     }
 }
 

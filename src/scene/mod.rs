@@ -5,6 +5,7 @@
 //!                                                                      = Geometry + Appearance
 //! ```
 
+mod camera_table;
 mod description;
 mod edit;
 mod error;
@@ -14,6 +15,7 @@ mod obj;
 mod prepared;
 mod spans;
 
+pub use camera_table::camera_table;
 pub use description::{RenderDefaults, Scene, SceneObject, ShapeDesc};
 pub use edit::{EditError, check_camera};
 pub use error::SceneError;

@@ -7,66 +7,110 @@ use winit::keyboard::KeyCode;
 /// Degrees of turn per pixel dragged.
 const DEGREES_PER_PIXEL: f32 = 0.2;
 
+/// A held key flies this many steps per second.
+pub const STEPS_PER_SECOND: f32 = 16.0;
+
+/// The movement keys, in the order of `CameraInput::held`.
+const KEYS: [KeyCode; 6] = [
+    KeyCode::KeyW,
+    KeyCode::KeyS,
+    KeyCode::KeyA,
+    KeyCode::KeyD,
+    KeyCode::KeyE,
+    KeyCode::KeyQ,
+];
+
 #[derive(Default)]
 pub struct CameraInput {
-    forward: bool,
-    back: bool,
-    left: bool,
-    right: bool,
-    up: bool,
-    down: bool,
+    /// Which movement key is down (forward, back, left, right, up, down).
+    held: [bool; 6],
+    /// How far each key has flown since it went down.
+    travelled: [f32; 6],
+    /// Keys released before they flew one step: the rest of the step is still to go.
+    tapped: [bool; 6],
     pub dragging: bool,
-    /// Scene units per second.
-    pub speed: f32,
+    /// How far a tap of a movement key moves, in scene units; a held key flies
+    /// `STEPS_PER_SECOND` of them a second.
+    pub step: f32,
 }
 
 impl CameraInput {
-    pub fn new(speed: f32) -> Self {
+    pub fn new(step: f32) -> Self {
         Self {
-            speed,
+            step,
             ..Self::default()
         }
     }
 
-    /// Records a movement key; false if `code` is not one.
+    /// Records a movement key; false if `code` is not one. A key released before it flew
+    /// one step leaves the rest of the step to `finish_taps`.
     pub fn key(&mut self, code: KeyCode, pressed: bool) -> bool {
-        let flag = match code {
-            KeyCode::KeyW => &mut self.forward,
-            KeyCode::KeyS => &mut self.back,
-            KeyCode::KeyA => &mut self.left,
-            KeyCode::KeyD => &mut self.right,
-            KeyCode::KeyE => &mut self.up,
-            KeyCode::KeyQ => &mut self.down,
-            _ => return false,
+        let Some(k) = KEYS.iter().position(|&c| c == code) else {
+            return false;
         };
-        *flag = pressed;
+        if pressed && !self.held[k] {
+            self.travelled[k] = 0.0;
+        }
+        if !pressed && self.held[k] && self.travelled[k] < self.step {
+            self.tapped[k] = true;
+        }
+        self.held[k] = pressed;
         true
     }
 
     pub fn release_all(&mut self) {
-        *self = Self::new(self.speed);
+        *self = Self::new(self.step);
     }
 
     pub fn flying(&self) -> bool {
-        self.forward || self.back || self.left || self.right || self.up || self.down
+        self.held.iter().any(|&h| h)
     }
 
     pub fn moving(&self) -> bool {
         self.flying() || self.dragging
     }
 
+    /// The unit direction key `k` moves the camera in.
+    fn direction(camera: &Camera, k: usize) -> glam::Vec3 {
+        match k {
+            0 => camera.forward(),
+            1 => -camera.forward(),
+            2 => -camera.right(),
+            3 => camera.right(),
+            4 => camera.up,
+            _ => -camera.up,
+        }
+    }
+
     /// Moves the eye for `dt` seconds of the keys held; true if it moved.
-    pub fn fly(&self, camera: &mut Camera, dt: f32) -> bool {
-        let axis = |pos: bool, neg: bool| pos as i32 as f32 - neg as i32 as f32;
-        let f = axis(self.forward, self.back);
-        let r = axis(self.right, self.left);
-        let u = axis(self.up, self.down);
-        if f == 0.0 && r == 0.0 && u == 0.0 {
+    pub fn fly(&mut self, camera: &mut Camera, dt: f32) -> bool {
+        if !self.flying() {
             return false;
         }
-        let step = self.speed * dt;
-        camera.eye += (camera.forward() * f + camera.right() * r + camera.up * u) * step;
-        true
+        let distance = self.step * STEPS_PER_SECOND * dt;
+        let mut moved = glam::Vec3::ZERO;
+        for k in 0..KEYS.len() {
+            if self.held[k] {
+                moved += Self::direction(camera, k) * distance;
+                self.travelled[k] += distance;
+            }
+        }
+        camera.eye += moved;
+        moved != glam::Vec3::ZERO
+    }
+
+    /// Moves the eye the rest of one step for each key tapped since the last call (released
+    /// before it flew a step); true if it moved.
+    pub fn finish_taps(&mut self, camera: &mut Camera) -> bool {
+        let mut moved = false;
+        for k in 0..KEYS.len() {
+            if std::mem::take(&mut self.tapped[k]) {
+                let rest = (self.step - self.travelled[k]).max(0.0);
+                camera.eye += Self::direction(camera, k) * rest;
+                moved |= rest > 0.0;
+            }
+        }
+        moved
     }
 
     /// Turns the camera by a mouse drag of (dx, dy) pixels: right turns right, up looks up.
@@ -99,8 +143,45 @@ mod tests {
     }
 
     #[test]
+    fn a_tap_moves_one_step_and_a_hold_flies_on() {
+        let mut input = CameraInput::new(2.0);
+        let mut c = cam();
+        // Pressed and released between two frames: no time flown, one whole step.
+        input.key(KeyCode::KeyD, true);
+        input.key(KeyCode::KeyD, false);
+        assert!(!input.flying());
+        assert!(input.finish_taps(&mut c));
+        assert!(
+            (c.eye - Vec3::new(2.0, 0.0, 0.0)).length() < 1e-5,
+            "{}",
+            c.eye
+        );
+        assert!(!input.finish_taps(&mut c), "a tap moves once");
+        // A short press that flew part of a step still ends one step along.
+        input.key(KeyCode::KeyW, true);
+        input.fly(&mut c, 0.02); // 0.64 of the 2-unit step
+        input.key(KeyCode::KeyW, false);
+        input.finish_taps(&mut c);
+        assert!(
+            (c.eye - Vec3::new(2.0, 0.0, -2.0)).length() < 1e-5,
+            "{}",
+            c.eye
+        );
+        // A long hold flies on and adds nothing at its release.
+        input.key(KeyCode::KeyS, true);
+        input.fly(&mut c, 0.25); // 4 steps back
+        input.key(KeyCode::KeyS, false);
+        assert!(!input.finish_taps(&mut c));
+        assert!(
+            (c.eye - Vec3::new(2.0, 0.0, 6.0)).length() < 1e-4,
+            "{}",
+            c.eye
+        );
+    }
+
+    #[test]
     fn w_flies_forward_and_d_right() {
-        let mut input = CameraInput::new(10.0);
+        let mut input = CameraInput::new(10.0 / STEPS_PER_SECOND);
         assert!(input.key(KeyCode::KeyW, true));
         let mut c = cam();
         assert!(input.fly(&mut c, 0.5));

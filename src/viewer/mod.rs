@@ -86,15 +86,16 @@ pub fn run(launch: Launch) -> Result<()> {
         )
     })?;
     event_loop.set_control_flow(ControlFlow::Wait);
-    let speed = scene
+    // A tap moves 1/64 of the scene's size; a held key flies a quarter of it a second.
+    let step = scene
         .bounds()
-        .map_or(10.0, |b| ((b.max - b.min).length() * 0.25).max(1e-3));
+        .map_or(0.625, |b| ((b.max - b.min).length() / 64.0).max(1e-3));
     probe.width = probe.width.max(1);
     let mut app = App {
         proxy: event_loop.create_proxy(),
         screenshot_dir,
         panel: PanelState::new(scene, aa),
-        input: CameraInput::new(speed),
+        input: CameraInput::new(step),
         initial_image: (probe.width, probe.height),
         gfx: None,
         error: None,
@@ -223,6 +224,7 @@ impl App {
         };
         let input = g.egui_state.take_egui_input(&g.window);
         let mut changes = panel::Changes::default();
+        self.panel.step = self.input.step;
         let panel = &mut self.panel;
         let status = &self.status;
         let output = g.egui_ctx.run_ui(input, |ui| {
@@ -231,6 +233,7 @@ impl App {
                 .resizable(false)
                 .show(ui, |ui| changes = panel.show(ui, status));
         });
+        self.input.step = self.panel.step;
         g.egui_state
             .handle_platform_output(&g.window, output.platform_output);
         g.draw(
@@ -365,7 +368,9 @@ impl App {
         }
         let was_flying = self.input.flying();
         if self.input.key(code, pressed) {
-            if was_flying && !self.input.moving() {
+            // A tap shorter than a frame still moves one step.
+            let tapped = self.input.finish_taps(&mut self.panel.camera);
+            if (was_flying || tapped) && !self.input.moving() {
                 self.send_camera(false);
             }
             self.last_frame = Instant::now();

@@ -49,6 +49,8 @@ pub struct PanelState {
     pub camera: Camera,
     pub initial_camera: Camera,
     pub aa: u32,
+    /// How far a tap of a movement key moves (the camera input's, shown and edited here).
+    pub step: f32,
     /// Subsamples per pixel when not N×N (the scene's `samples`).
     pub samples: Option<u32>,
     pub adaptive: bool,
@@ -80,6 +82,7 @@ impl PanelState {
             camera: scene.camera,
             initial_camera: scene.camera,
             samples: scene.render.samples,
+            step: 1.0,
             scene,
             aa,
             adaptive: false,
@@ -352,9 +355,25 @@ impl PanelState {
         if c.aperture > 0.0 {
             ui.small("Click the image to focus on what is there.");
         }
-        if ui.button("Reset camera").clicked() {
-            c = self.initial_camera;
-        }
+        let step_speed = self.step * 0.01;
+        ui.add(
+            DragValue::new(&mut self.step)
+                .speed(step_speed)
+                .range(prism::limits::MIN_LENGTH as f32..=prism::limits::MAX_COORDINATE as f32)
+                .prefix("step (a tap of WASD/QE) "),
+        );
+        ui.horizontal(|ui| {
+            if ui.button("Reset camera").clicked() {
+                c = self.initial_camera;
+            }
+            // The view as the scene file's [camera] table, to paste into a file.
+            if ui.button("Copy camera").clicked() {
+                let table = prism::scene::camera_table(&self.camera, self.scene.origin);
+                ui.ctx().copy_text(table.clone());
+                eprintln!("prism: copied the camera:\n{table}");
+                self.message = Some(("copied the [camera] table".into(), false));
+            }
+        });
         if c != before {
             match check_camera(&c) {
                 Ok(()) => {

@@ -3,8 +3,8 @@
 # docs/testing.md). Usage: e2e.sh PRISM_BINARY WORK_DIR
 # Opens the viewer on the seed scene, waits for convergence, takes a screenshot with F12,
 # moves the camera with W, waits again, takes a second screenshot with P, photographs the
-# whole screen, squeezes the window narrower than its panel and back, moves the keyboard
-# focus into the panel with Tab, and quits with Ctrl+Q. Leaves the viewer's log and the
+# whole screen, squeezes the window narrower than its panel and back, taps D and takes a
+# third screenshot, moves the keyboard focus into the panel with Tab, and quits with Ctrl+Q. Leaves the viewer's log and the
 # images in WORK_DIR.
 set -euo pipefail
 prism=$1
@@ -41,6 +41,13 @@ kill -0 $pid 2>/dev/null || { echo "viewer died when narrowed:"; cat "$log"; exi
 import -window root "$work/narrow.png"
 xdotool windowsize "$window" 620 240
 wait_for "converged" 3 120
+
+# A tap of D (press and release at once) moves one step to the right.
+xdotool windowfocus --sync "$window"
+xdotool key --window "$window" d
+wait_for "converged" 4 120
+xdotool key --window "$window" F12
+wait_for "saved" 3 30
 
 # Tab moves the keyboard focus into the panel; Ctrl+Q must still quit.
 xdotool windowfocus --sync "$window"
