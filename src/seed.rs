@@ -1,7 +1,7 @@
 //! The seed scene, built into the library with its texture, so that an installed prism
 //! opens it from any folder without the source tree.
 
-use crate::scene::{Assets, parse_scene_with};
+use crate::scene::{Assets, LoadedScene, parse_loaded, parse_scene_with};
 use crate::scene::{Scene, SceneError};
 use std::path::Path;
 
@@ -17,6 +17,11 @@ const FILES: &[(&str, &[u8])] = &[("../earth.jpg", include_bytes!("../assets/ear
 /// The seed scene, validated as any scene file is.
 pub fn scene() -> Result<Scene, SceneError> {
     parse_scene_with(SCENE_TOML, Path::new(NAME), Assets::Embedded(FILES))
+}
+
+/// The seed scene with its file's text, to save an edited seed as a file of its own.
+pub fn loaded() -> Result<LoadedScene, SceneError> {
+    parse_loaded(SCENE_TOML, Path::new(NAME), Assets::Embedded(FILES))
 }
 
 #[cfg(test)]

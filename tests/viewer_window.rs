@@ -3,7 +3,8 @@
 //! key restarts accumulation, a window narrower than the panel breaks nothing, and Ctrl+Q
 //! closes the window (with the keyboard focus in the panel too) and ends the render thread.
 //! tests/window/panic.sh checks that a panic in the render thread is shown and reported, and
-//! tests/window/focus.sh that a click focuses the lens.
+//! tests/window/focus.sh that a click focuses the lens, and tests/window/edit.sh picking,
+//! editing, saving and reloading.
 //!
 //! Needs xvfb-run, xdotool and ImageMagick (`.ci/run` installs them). Without them the test
 //! says so and passes, unless PRISM_REQUIRE_WINDOW_TEST is set, as it is in CI.
@@ -268,5 +269,152 @@ fn a_click_focuses_the_lens_on_what_is_under_the_cursor() {
         off < 0.01,
         "{:.3}% of pixels differ from prism render --focus-distance 4",
         off * 100.0
+    );
+}
+
+/// Two matte spheres on a floor, for tests/window/edit.sh: the right sphere's radius line
+/// carries a comment the script's edits find it by.
+const EDIT_SCENE: &str = "\
+# Two spheres on a floor: the window test picks the left one and edits it.
+[camera]
+eye = [0, 1.5, 8]
+look_at = [0, 0.5, 0]
+fov = 40
+
+[render]
+ambient = [0.1, 0.1, 0.1]
+
+[[lights]]
+position = [5, 8, 6]   # the only light
+
+[materials.red]
+color = [0.8, 0.15, 0.1]
+
+[materials.blue]
+color = [0.1, 0.2, 0.8]
+
+[materials.floor]
+color = [0.6, 0.6, 0.6]
+specular = 0
+
+[[spheres]]
+name = \"left\"
+center = [-1.5, 0.5, 0]
+radius = 1
+material = \"red\"
+
+[[spheres]]
+name = \"right\"
+center = [1.5, 0.5, 0]
+radius = 1  # right
+material = \"blue\"
+
+[[planes]]
+name = \"floor\"
+point = [0, -0.5, 0]
+normal = [0, 1, 0]
+material = \"floor\"
+";
+
+/// tests/window/edit.sh: a click selects the sphere under it (the viewer names it); an edit
+/// of its colour changes the image there and nowhere else; Ctrl+S writes a file that loads
+/// and renders to the same image, keeping the file's comments; an edit of the file on disk
+/// is picked up without a key press; a broken edit shows the error, keeps the last good
+/// image and the window; the fix brings the scene back. Each screenshot equals `prism
+/// render` of the file it should show.
+#[cfg(feature = "viewer")]
+#[test]
+fn picking_editing_saving_and_reloading_in_the_window() {
+    if !window_tools() {
+        return;
+    }
+    let work = tempfile::tempdir().unwrap();
+    let scene = work.path().join("scene.toml");
+    std::fs::write(&scene, EDIT_SCENE).unwrap();
+    let out = under_xvfb("edit.sh", work.path());
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let log = std::fs::read_to_string(work.path().join("viewer.log")).unwrap_or_default();
+    assert!(
+        out.status.success(),
+        "edit.sh failed\n{stdout}\nviewer log: {log}"
+    );
+    assert!(log.contains("prism: selected left"), "{log}");
+    assert!(
+        log.contains("scene.toml:32") && log.contains("`radius` must be greater than zero"),
+        "the error names the file, the line and the field:\n{log}"
+    );
+    assert!(!log.contains("panicked"), "{log}");
+    let taken = shots(&work.path().join("shots"));
+    assert_eq!(taken.len(), 6, "{taken:?}");
+    let shot = |i: usize| image::open(&taken[i]).unwrap().into_rgb8();
+    // `prism render` of a variant of the scene, at the window's size.
+    let render = |name: &str, text: &str| {
+        let path = work.path().join(name);
+        std::fs::write(&path, text).unwrap();
+        let path = path.to_string_lossy().into_owned();
+        render_headless(work.path(), &[&path, "--width", "320", "--height", "700"])
+    };
+    let original = render("original.toml", EDIT_SCENE);
+    let green = EDIT_SCENE.replace("[0.8, 0.15, 0.1]", "[0.8, 0.9, 0.1]");
+    let edited = render("edited.toml", &green);
+    assert_eq!(differing(&shot(0), &original, 0), 0.0, "the opened scene");
+    assert_eq!(differing(&shot(1), &edited, 0), 0.0, "the edited colour");
+    // Where the edit changed the image: the left sphere's pixels, and no other. They are
+    // those a scene lit by nothing but the sphere's own glow shows not black.
+    let glowing = EDIT_SCENE
+        .replace(
+            "color = [0.8, 0.15, 0.1]",
+            "color = [0, 0, 0]\nemission = [1, 1, 1]",
+        )
+        .replace("ambient = [0.1, 0.1, 0.1]", "ambient = [0, 0, 0]")
+        .replace("   # the only light", "\ncolor = [0, 0, 0]");
+    let sphere = render("mask.toml", &glowing);
+    let mut changed = 0;
+    for ((a, b), m) in shot(0).pixels().zip(shot(1).pixels()).zip(sphere.pixels()) {
+        if a != b {
+            changed += 1;
+            assert!(m.0 != [0, 0, 0], "a pixel changed outside the left sphere");
+        }
+    }
+    assert!(changed > 2000, "only {changed} pixels changed");
+    // The saved file: the new colour, the comments kept, and the same image.
+    let saved = std::fs::read_to_string(work.path().join("saved.toml")).unwrap();
+    assert!(saved.contains("color = [0.8, 0.9, 0.1]"), "{saved}");
+    assert!(
+        saved.contains("position = [5, 8, 6]   # the only light"),
+        "{saved}"
+    );
+    let saved_image = render("saved.toml", &saved);
+    assert_eq!(differing(&saved_image, &edited, 0), 0.0, "the saved file");
+    assert_eq!(differing(&shot(2), &edited, 0), 0.0, "after the reload");
+    let smaller = render(
+        "smaller.toml",
+        &green.replace("radius = 1  # right", "radius = 0.6"),
+    );
+    assert_eq!(differing(&shot(3), &smaller, 0), 0.0, "the edit on disk");
+    assert_eq!(
+        differing(&shot(4), &smaller, 0),
+        0.0,
+        "the last good scene stays"
+    );
+    let fixed = render(
+        "fixed.toml",
+        &green.replace("radius = 1  # right", "radius = 0.8"),
+    );
+    assert_eq!(differing(&shot(5), &fixed, 0), 0.0, "the fix");
+    // The broken state on screen: red error text at the top of the panel.
+    let screen = image::open(work.path().join("broken.png"))
+        .unwrap()
+        .into_rgb8();
+    let red = (0..300)
+        .flat_map(|x| (0..90).map(move |y| (x, y)))
+        .filter(|&(x, y)| {
+            let p = screen.get_pixel(x, y).0;
+            p[0] > 150 && p[1] < 100 && p[2] < 100
+        })
+        .count();
+    assert!(
+        red > 50,
+        "no error text at the top of the panel ({red} pixels)"
     );
 }

@@ -173,6 +173,25 @@ impl AreaShape {
         }
     }
 
+    /// The same surface moved by `offset`.
+    pub fn moved_by(&self, offset: Vec3) -> AreaShape {
+        match *self {
+            AreaShape::Rectangle {
+                corner,
+                edge_u,
+                edge_v,
+            } => AreaShape::Rectangle {
+                corner: corner + offset,
+                edge_u,
+                edge_v,
+            },
+            AreaShape::Sphere { center, radius } => AreaShape::Sphere {
+                center: center + offset,
+                radius,
+            },
+        }
+    }
+
     /// The same surface with its lengths scaled by `scale` about the origin.
     pub fn scaled(&self, scale: f32) -> AreaShape {
         match *self {
@@ -291,6 +310,29 @@ impl Light {
         match self.kind {
             LightKind::Area { shape, .. } => Some(shape.center()),
             _ => self.position(),
+        }
+    }
+
+    /// The same light moved by `offset` (a directional light, which has no place, unmoved).
+    pub fn moved_by(&self, offset: Vec3) -> Light {
+        let mut moved = *self;
+        match &mut moved.kind {
+            LightKind::Point { position, .. } | LightKind::Spot { position, .. } => {
+                *position += offset
+            }
+            LightKind::Area { shape, .. } => *shape = shape.moved_by(offset),
+            LightKind::Directional { .. } => {}
+        }
+        moved
+    }
+
+    /// How the light fades with distance; None for a directional light, which does not.
+    pub fn falloff_mut(&mut self) -> Option<&mut Falloff> {
+        match &mut self.kind {
+            LightKind::Point { falloff, .. }
+            | LightKind::Spot { falloff, .. }
+            | LightKind::Area { falloff, .. } => Some(falloff),
+            LightKind::Directional { .. } => None,
         }
     }
 

@@ -105,12 +105,28 @@ fn exit_on_signals() -> Result<()> {
 
 #[cfg(feature = "viewer")]
 fn view(args: ViewArgs) -> Result<()> {
-    // Everything that can be wrong with the input is reported before a window opens.
-    let scene = load_scene_or_seed(args.scene.as_deref())?;
+    // A scene file that fails to load is reported here and shown in the window, which
+    // opens anyway (the file is watched: a fix loads it).
+    let (start, defaults) = match &args.scene {
+        None => {
+            let scene = prism::seed::scene()?;
+            let defaults = scene.render;
+            (crate::viewer::Start::Seed(scene), defaults)
+        }
+        Some(path) => {
+            let load = prism::scene::load_scene_file(path);
+            let defaults = match &load.result {
+                Ok(loaded) => loaded.scene.render,
+                Err(_) => prism::scene::RenderDefaults::default(),
+            };
+            let path = path.clone();
+            (crate::viewer::Start::File { path, load }, defaults)
+        }
+    };
     let settings =
-        prism::render::RenderSettings::for_scene(&scene.render, args.width, args.height, args.aa)?;
+        prism::render::RenderSettings::for_scene(&defaults, args.width, args.height, args.aa)?;
     crate::viewer::run(crate::viewer::Launch {
-        scene,
+        start,
         settings,
         screenshot_dir: args.screenshot_dir.unwrap_or_else(|| PathBuf::from(".")),
     })

@@ -2,11 +2,14 @@
 //! file itself: a bad value is refused with a message, never rendered.
 
 use super::description::Scene;
-use crate::appearance::{LightKind, SpotCone};
+use crate::appearance::{Background, Falloff, LightKind, Material, SpotCone, Texture};
 use crate::camera::Camera;
 use crate::limits::{
-    ETA, FRACTION, MAX_COORDINATE, MAX_EXTINCTION, MIN_LENGTH, ROUGHNESS, SPOT_ANGLE,
+    DEPTH, ETA, FRACTION, MAX_COORDINATE, MAX_EXTINCTION, MAX_LIGHT_INTENSITY, MAX_PHONG_FACTOR,
+    MAX_RADIANCE, MAX_SHININESS, MIN_LENGTH, REFLECTANCE, ROUGHNESS, SPOT_ANGLE,
 };
+use glam::Vec3;
+use std::ops::RangeInclusive;
 use thiserror::Error;
 
 /// Why an edit was refused.
@@ -63,6 +66,97 @@ pub enum EditError {
     /// A fog density out of range, or fog in a scene without any.
     #[error("fog: {0}")]
     Fog(String),
+    /// A material that breaks one of the file's rules for `[materials]`.
+    #[error("{object}: `{field}` {message}")]
+    Material {
+        /// The object's name.
+        object: String,
+        /// The field at fault.
+        field: &'static str,
+        /// What is wrong.
+        message: String,
+    },
+    /// A scene-wide value (background, ambient light, depth) out of range.
+    #[error("render: `{field}` {message}")]
+    Render {
+        /// The field at fault.
+        field: &'static str,
+        /// What is wrong.
+        message: String,
+    },
+}
+
+/// Why a material breaks the scene file's rules: the field, and what is wrong with it.
+pub type MaterialProblem = (&'static str, String);
+
+/// Checks `m` by the rules the scene file's `[materials]` tables follow (the same limits,
+/// from limits.rs, and the same rules between fields), so that an edit cannot make a
+/// material the file would refuse.
+pub fn check_material(m: &Material) -> Result<(), MaterialProblem> {
+    let within = |field: &'static str, v: f32, range: RangeInclusive<f32>| {
+        if range.contains(&v) {
+            Ok(())
+        } else {
+            Err((
+                field,
+                format!(
+                    "{v} must be a number from {} to {}",
+                    range.start(),
+                    range.end()
+                ),
+            ))
+        }
+    };
+    let color = |field: &'static str, c: Vec3, hi: f32| {
+        if c.is_finite() && c.min_element() >= 0.0 && c.max_element() <= hi {
+            Ok(())
+        } else {
+            Err((field, format!("{c} must lie in [0, {hi}] per channel")))
+        }
+    };
+    let reflectance = *REFLECTANCE.end();
+    if let Texture::Solid(c) = m.texture {
+        color("color", c, reflectance)?;
+    }
+    within("ambient", m.ambient, 0.0..=MAX_PHONG_FACTOR)?;
+    within("diffuse", m.diffuse, 0.0..=MAX_PHONG_FACTOR)?;
+    within("specular", m.specular, 0.0..=MAX_PHONG_FACTOR)?;
+    within("shininess", m.shininess, 0.0..=MAX_SHININESS)?;
+    within("reflectivity", m.reflectivity, FRACTION)?;
+    within("transparency", m.transparency, FRACTION)?;
+    if let Some(eta) = m.eta {
+        within("eta", eta, ETA)?;
+    }
+    color("emission", m.emission, MAX_RADIANCE)?;
+    within("roughness", m.roughness, ROUGHNESS)?;
+    if m.fresnel && !matches!(m.eta, Some(e) if e != 1.0) {
+        return Err((
+            "fresnel",
+            "needs a refractive material: an `eta` other than 1".into(),
+        ));
+    }
+    if m.roughness > 0.0 && m.reflectivity == 0.0 && !m.fresnel {
+        return Err((
+            "roughness",
+            "spreads mirror reflection: it needs a `reflectivity` above 0 (or `fresnel`)".into(),
+        ));
+    }
+    if m.absorption != Vec3::ZERO {
+        if m.transparency == 0.0 {
+            return Err(("absorption", "needs a `transparency` above 0".into()));
+        }
+        color("absorption", m.absorption, MAX_EXTINCTION)?;
+    }
+    if let Some(c) = m.conductor {
+        if m.reflectivity == 0.0 {
+            return Err(("conductor", "needs a `reflectivity` above 0".into()));
+        }
+        if m.fresnel {
+            return Err(("conductor", "cannot be `fresnel` glass as well".into()));
+        }
+        color("conductor", c, reflectance)?;
+    }
+    Ok(())
 }
 
 impl Scene {
@@ -135,10 +229,7 @@ impl Scene {
     /// Resizes area light `light` about its centre to `size` (`AreaShape::size`).
     pub fn set_light_size(&mut self, light: usize, size: f32) -> Result<(), EditError> {
         let refuse = |message: String| EditError::Light { light, message };
-        let l = self
-            .lights
-            .get_mut(light)
-            .ok_or_else(|| refuse("no such light".into()))?;
+        let l = self.light_mut(light)?;
         let LightKind::Area { shape, .. } = &mut l.kind else {
             return Err(refuse("only an area light has a size".into()));
         };
@@ -161,10 +252,7 @@ impl Scene {
     /// Sets spotlight `light`'s cone: half-angle in degrees and softness (0..1).
     pub fn set_spot(&mut self, light: usize, angle: f32, softness: f32) -> Result<(), EditError> {
         let refuse = |message: String| EditError::Light { light, message };
-        let l = self
-            .lights
-            .get_mut(light)
-            .ok_or_else(|| refuse("no such light".into()))?;
+        let l = self.light_mut(light)?;
         let LightKind::Spot { cone, .. } = &mut l.kind else {
             return Err(refuse("only a spotlight has a cone".into()));
         };
@@ -194,6 +282,138 @@ impl Scene {
     }
 }
 
+impl Scene {
+    /// Replaces object `object`'s material with `material`, if the scene file would take it
+    /// ([`check_material`]).
+    pub fn set_material(&mut self, object: usize, material: Material) -> Result<(), EditError> {
+        let o = self
+            .objects
+            .get_mut(object)
+            .ok_or(EditError::NoSuchObject(object))?;
+        check_material(&material).map_err(|(field, message)| EditError::Material {
+            object: o.name.clone(),
+            field,
+            message,
+        })?;
+        o.material = material;
+        Ok(())
+    }
+
+    /// Replaces light `index`'s colour and, for a light at a point (point, spot, sphere,
+    /// rectangle), moves it so that its centre is `center` (relative to the scene's origin).
+    pub fn set_light_at(
+        &mut self,
+        index: usize,
+        color: Vec3,
+        center: Option<Vec3>,
+    ) -> Result<(), EditError> {
+        let refuse = |message: String| EditError::Light {
+            light: index,
+            message,
+        };
+        let l = self.light_mut(index)?;
+        if !(color.is_finite() && color.min_element() >= 0.0 && color.max_element() <= MAX_RADIANCE)
+        {
+            return Err(refuse(format!(
+                "colour {color} must lie in [0, {MAX_RADIANCE}] per channel"
+            )));
+        }
+        let mut moved = *l;
+        moved.color = color;
+        if let (Some(to), Some(from)) = (center, l.center()) {
+            let ok = to.is_finite()
+                && to.abs().max_element() as f64 <= MAX_COORDINATE
+                && (to - from).is_finite();
+            if !ok {
+                return Err(refuse(format!(
+                    "position {to} must lie within {MAX_COORDINATE:e} on every axis"
+                )));
+            }
+            moved = moved.moved_by(to - from);
+        }
+        *l = moved;
+        Ok(())
+    }
+
+    /// Sets the intensity of light `index`, which must fade with inverse-square falloff.
+    pub fn set_light_intensity(&mut self, index: usize, intensity: f32) -> Result<(), EditError> {
+        let refuse = |message: String| EditError::Light {
+            light: index,
+            message,
+        };
+        let l = self.light_mut(index)?;
+        let Some(falloff) = l.falloff_mut() else {
+            return Err(refuse("only a light with falloff has an intensity".into()));
+        };
+        if !(0.0..=MAX_LIGHT_INTENSITY).contains(&intensity) {
+            return Err(refuse(format!(
+                "intensity {intensity} must be a number from 0 to {MAX_LIGHT_INTENSITY:e}"
+            )));
+        }
+        match falloff {
+            Falloff::InverseSquare { intensity: i } => *i = intensity,
+            Falloff::None => {
+                return Err(refuse(
+                    "an intensity needs falloff = \"inverse_square\"".into(),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// Sets a one-colour background (replacing a gradient or an image).
+    pub fn set_background_color(&mut self, color: Vec3) -> Result<(), EditError> {
+        check_radiance("background", color)?;
+        self.background = Background::Solid(color);
+        Ok(())
+    }
+
+    /// Sets the ambient light.
+    pub fn set_ambient(&mut self, color: Vec3) -> Result<(), EditError> {
+        check_radiance("ambient", color)?;
+        self.ambient = color;
+        Ok(())
+    }
+
+    /// Sets the most secondary bounces along one path.
+    pub fn set_max_depth(&mut self, depth: u32) -> Result<(), EditError> {
+        if !DEPTH.contains(&depth) {
+            return Err(EditError::Render {
+                field: "max_depth",
+                message: format!(
+                    "{depth} must be a whole number from {} to {}",
+                    DEPTH.start(),
+                    DEPTH.end()
+                ),
+            });
+        }
+        self.render.max_depth = depth;
+        Ok(())
+    }
+}
+
+impl Scene {
+    /// Light `index`, to edit.
+    fn light_mut(&mut self, index: usize) -> Result<&mut crate::appearance::Light, EditError> {
+        self.lights.get_mut(index).ok_or(EditError::Light {
+            light: index,
+            message: "no such light".into(),
+        })
+    }
+}
+
+/// A background or ambient colour: radiance, brighter than white allowed within reason.
+fn check_radiance(field: &'static str, c: Vec3) -> Result<(), EditError> {
+    if c.is_finite() && c.min_element() >= 0.0 && c.max_element() <= MAX_RADIANCE {
+        Ok(())
+    } else {
+        Err(EditError::Render {
+            field,
+            message: format!("{c} must lie in [0, {MAX_RADIANCE}] per channel"),
+        })
+    }
+}
+
 /// Checks a camera set by hand, by the rules every camera follows ([`Camera::check`]).
 pub fn check_camera(c: &Camera) -> Result<(), EditError> {
     c.check().map_err(EditError::Camera)
@@ -202,7 +422,6 @@ pub fn check_camera(c: &Camera) -> Result<(), EditError> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use glam::Vec3;
 
     fn seed() -> Scene {
         crate::seed::scene().unwrap()
@@ -330,5 +549,134 @@ mod tests {
         for c in cases {
             assert!(check_camera(&c).is_err(), "{c:?}");
         }
+    }
+
+    /// `check_material` takes what the scene file takes and refuses what it refuses: each
+    /// `[materials]` table below either loads, and then passes the check, or is refused by
+    /// both.
+    #[test]
+    fn material_checks_agree_with_the_file() {
+        let tables = [
+            ("color = [0.5, 0.5, 0.5]", true),
+            ("color = [1.5, 0.5, 0.5]", false),
+            ("ambient = 1000", true),
+            ("ambient = 1001", false),
+            ("shininess = 10000", true),
+            ("shininess = 10001", false),
+            ("reflectivity = 1", true),
+            ("reflectivity = 1.01", false),
+            ("transparency = -0.01", false),
+            ("eta = 10", true),
+            ("eta = 11", false),
+            ("emission = [10000, 0, 0]", true),
+            ("emission = [10001, 0, 0]", false),
+            ("roughness = 0.5\nreflectivity = 0.5", true),
+            ("roughness = 0.5", false),
+            ("fresnel = true\neta = 1.5", true),
+            ("fresnel = true\neta = 1", false),
+            ("fresnel = true", false),
+            ("absorption = [1, 0, 0]\ntransparency = 0.5", true),
+            ("absorption = [1, 0, 0]", false),
+            ("conductor = [1, 0.8, 0.3]\nreflectivity = 1", true),
+            ("conductor = [1, 0.8, 0.3]", false),
+            (
+                "conductor = [1, 0.8, 0.3]\nreflectivity = 1\nfresnel = true\neta = 1.5",
+                false,
+            ),
+        ];
+        let template = crate::scene::parse_scene(
+            "[camera]\neye = [0, 0, 0]\nfov = 40\n[[spheres]]\ncenter = [0, 0, -5]\nradius = 1\n",
+            std::path::Path::new("m.toml"),
+            std::path::Path::new("."),
+        )
+        .unwrap();
+        for (table, ok) in tables {
+            let text = format!(
+                "[camera]\neye = [0, 0, 0]\nfov = 40\n[materials.m]\n{table}\n\
+                 [[spheres]]\ncenter = [0, 0, -5]\nradius = 1\nmaterial = \"m\"\n"
+            );
+            let parsed = crate::scene::parse_scene(
+                &text,
+                std::path::Path::new("m.toml"),
+                std::path::Path::new("."),
+            );
+            assert_eq!(parsed.is_ok(), ok, "the file and {table:?}");
+            if let Ok(scene) = parsed {
+                assert_eq!(
+                    check_material(&scene.objects[0].material),
+                    Ok(()),
+                    "{table}"
+                );
+            }
+        }
+        // The refused ones, built by hand, are refused by the check and by the edit.
+        let base = template.objects[0].material.clone();
+        let bad = [
+            Material {
+                texture: Texture::Solid(Vec3::new(1.5, 0.5, 0.5)),
+                ..base.clone()
+            },
+            Material {
+                shininess: 10001.0,
+                ..base.clone()
+            },
+            Material {
+                roughness: 0.5,
+                ..base.clone()
+            },
+            Material {
+                fresnel: true,
+                ..base.clone()
+            },
+            Material {
+                absorption: Vec3::X,
+                ..base.clone()
+            },
+            Material {
+                conductor: Some(Vec3::ONE),
+                ..base.clone()
+            },
+            Material {
+                eta: Some(f32::NAN),
+                ..base.clone()
+            },
+        ];
+        for m in bad {
+            assert!(check_material(&m).is_err(), "{m:?}");
+            let mut scene = template.clone();
+            let e = scene.set_material(0, m).unwrap_err();
+            assert!(e.to_string().starts_with("spheres 0: `"), "{e}");
+            assert_eq!(scene, template, "unchanged after a refusal");
+        }
+    }
+
+    #[test]
+    fn light_and_scene_edits_keep_the_files_limits() {
+        let mut s = seed();
+        let before = s.lights[0].center().unwrap();
+        let to = before + Vec3::new(1.0, 2.0, 3.0);
+        s.set_light_at(0, Vec3::splat(0.5), Some(to)).unwrap();
+        assert_eq!(s.lights[0].center(), Some(to));
+        assert_eq!(s.lights[0].color, Vec3::splat(0.5));
+        assert!(s.set_light_at(0, Vec3::splat(-0.1), None).is_err());
+        assert!(s.set_light_at(0, Vec3::splat(2e4), None).is_err());
+        assert!(
+            s.set_light_at(0, Vec3::ONE, Some(Vec3::splat(2e12)))
+                .is_err()
+        );
+        assert!(s.set_light_at(0, Vec3::ONE, Some(Vec3::NAN)).is_err());
+        assert!(s.set_light_at(99, Vec3::ONE, None).is_err());
+        assert_eq!(s.lights[0].center(), Some(to), "unchanged after refusals");
+        assert!(
+            s.set_light_intensity(0, 2.0).is_err(),
+            "the seed's light has no falloff"
+        );
+        s.set_ambient(Vec3::splat(0.2)).unwrap();
+        assert!(s.set_ambient(Vec3::splat(f32::INFINITY)).is_err());
+        s.set_background_color(Vec3::new(0.0, 0.0, 0.3)).unwrap();
+        assert!(s.set_background_color(Vec3::splat(-1.0)).is_err());
+        s.set_max_depth(*DEPTH.end()).unwrap();
+        assert!(s.set_max_depth(DEPTH.end() + 1).is_err());
+        assert_eq!(s.render.max_depth, *DEPTH.end());
     }
 }

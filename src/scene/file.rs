@@ -247,9 +247,57 @@ struct MeshDef {
 
 /// Reads and validates the scene file at `path`; image textures are found relative to it.
 pub fn load_scene(path: &Path) -> Result<Scene, SceneError> {
-    let source = read_scene_text(path)?;
-    let base = path.parent().unwrap_or(Path::new("."));
-    parse_scene(&source, path, base)
+    load_scene_file(path).result.map(|loaded| loaded.scene)
+}
+
+/// A scene file as loaded, with what saving it back needs: its text, and where in the text
+/// each object comes from.
+#[derive(Clone, Debug)]
+pub struct LoadedScene {
+    /// The validated scene.
+    pub scene: Scene,
+    /// The file's text as read.
+    pub source: String,
+    /// For each of `scene.objects`, in order, the table entry it comes from.
+    pub origins: Vec<ObjectOrigin>,
+}
+
+/// The entry of a scene file that made an object.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ObjectOrigin {
+    /// The array of tables it is in: "spheres", "boxes", "meshes", ….
+    pub table: &'static str,
+    /// Its index in that array.
+    pub index: usize,
+    /// The name of the `[materials]` entry it uses; None for the default material or for
+    /// a mesh part whose material comes from the mesh's own MTL file.
+    pub material: Option<String>,
+}
+
+/// The outcome of loading a scene file, and every file the attempt read or tried to read
+/// (the scene file, textures, meshes, material libraries): what a viewer that reloads on
+/// change watches, whether the load succeeded or not.
+#[derive(Debug)]
+pub struct SceneLoad {
+    /// The scene, or why it was refused.
+    pub result: Result<LoadedScene, SceneError>,
+    /// The files read, the scene file first.
+    pub files: Vec<PathBuf>,
+}
+
+/// Reads and validates the scene file at `path`, keeping what [`SceneLoad`] describes.
+pub fn load_scene_file(path: &Path) -> SceneLoad {
+    let mut files = vec![path.to_path_buf()];
+    let result = read_scene_text(path).and_then(|source| {
+        let base = path.parent().unwrap_or(Path::new("."));
+        let (scene, origins) = parse_recorded(&source, path, Assets::Folder(base), &mut files)?;
+        Ok(LoadedScene {
+            scene,
+            source,
+            origins,
+        })
+    });
+    SceneLoad { result, files }
 }
 
 /// The text of a scene file: a regular file of at most `MAX_SCENE_FILE_BYTES`, in UTF-8.
@@ -360,6 +408,28 @@ pub fn parse_scene(source: &str, path: &Path, base_dir: &Path) -> Result<Scene, 
 
 /// Validates scene text; `path` names it in messages, `assets` finds the files it names.
 pub fn parse_scene_with(source: &str, path: &Path, assets: Assets) -> Result<Scene, SceneError> {
+    parse_recorded(source, path, assets, &mut Vec::new()).map(|(scene, _)| scene)
+}
+
+/// Validates scene text, keeping what saving it back needs (as [`load_scene_file`] does for
+/// a file): for a scene that was not read from a file, such as the built-in seed.
+pub fn parse_loaded(source: &str, path: &Path, assets: Assets) -> Result<LoadedScene, SceneError> {
+    let (scene, origins) = parse_recorded(source, path, assets, &mut Vec::new())?;
+    Ok(LoadedScene {
+        scene,
+        source: source.to_string(),
+        origins,
+    })
+}
+
+/// Validates scene text, adding each file it reads to `files` (once) and returning each
+/// object's origin with the scene.
+fn parse_recorded(
+    source: &str,
+    path: &Path,
+    assets: Assets,
+    files: &mut Vec<PathBuf>,
+) -> Result<(Scene, Vec<ObjectOrigin>), SceneError> {
     let file: SceneFile = toml::from_str(source).map_err(|e| {
         let (line, column) = line_column(source, e.span().map_or(0, |s| s.start));
         SceneError::Syntax {
@@ -377,8 +447,15 @@ pub fn parse_scene_with(source: &str, path: &Path, assets: Assets) -> Result<Sce
         spans: FieldSpans::new(source),
         assets,
         origin: glam::DVec3::from(eye),
+        reads: Default::default(),
     };
-    v.scene(file)
+    let result = v.scene(file);
+    for read in v.reads.into_inner() {
+        if !files.contains(&read) {
+            files.push(read);
+        }
+    }
+    result
 }
 
 struct Validator<'a> {
@@ -389,6 +466,8 @@ struct Validator<'a> {
     assets: Assets<'a>,
     /// The camera's eye, in f64: positions are stored relative to it.
     origin: glam::DVec3,
+    /// The files the scene names that have been looked for, in order (from a folder only).
+    reads: std::cell::RefCell<Vec<PathBuf>>,
 }
 
 /// Where a problem is: the span of the table it is in, and how to name that table.
@@ -745,7 +824,16 @@ impl Validator<'_> {
         }
     }
 
-    fn scene(&self, file: SceneFile) -> Result<Scene, SceneError> {
+    /// Where asset `rel` is, noted as read.
+    fn locate(&self, rel: &str) -> PathBuf {
+        let path = self.assets.locate(rel);
+        if let Assets::Folder(_) = self.assets {
+            self.reads.borrow_mut().push(path.clone());
+        }
+        path
+    }
+
+    fn scene(&self, file: SceneFile) -> Result<(Scene, Vec<ObjectOrigin>), SceneError> {
         let camera = self.camera(&file.camera)?;
         let (render, ambient) = self.render(file.render.as_ref())?;
         let lights = file
@@ -777,11 +865,12 @@ impl Validator<'_> {
             .collect::<Result<HashMap<_, _>, SceneError>>()?;
 
         let mut objects = Vec::new();
-        let mut add = |kind: &str,
+        let mut origins = Vec::new();
+        let mut add = |kind: &'static str,
                        i: usize,
                        span: Range<usize>,
                        name: &Option<String>,
-                       material: &Option<String>,
+                       material_name: &Option<String>,
                        shadow: Option<bool>,
                        shape: &dyn Fn(&Item) -> Result<ShapeDesc, SceneError>|
          -> Result<(), SceneError> {
@@ -790,7 +879,7 @@ impl Validator<'_> {
                 None => format!("{kind}[{i}]"),
             };
             let at = Item { span, name: &label };
-            let material = match material {
+            let material = match material_name {
                 None => Material::default(),
                 Some(m) => materials.get(m).cloned().ok_or_else(|| {
                     self.field_error(
@@ -805,6 +894,11 @@ impl Validator<'_> {
                 shape: shape(&at)?,
                 material,
                 casts_shadow: shadow.unwrap_or(true),
+            });
+            origins.push(ObjectOrigin {
+                table: kind,
+                index: i,
+                material: material_name.clone(),
             });
             Ok(())
         };
@@ -1001,9 +1095,14 @@ impl Validator<'_> {
                     material: part.material,
                     casts_shadow: d.shadow.unwrap_or(true),
                 });
+                origins.push(ObjectOrigin {
+                    table: "meshes",
+                    index: i,
+                    material: d.material.clone(),
+                });
             }
         }
-        Ok(Scene {
+        let scene = Scene {
             origin: self.origin,
             camera,
             render,
@@ -1012,7 +1111,8 @@ impl Validator<'_> {
             lights,
             fog,
             objects,
-        })
+        };
+        Ok((scene, origins))
     }
 
     /// `shape` (relative to the scene's origin) under `placement`, when its own parameters
@@ -1072,7 +1172,7 @@ impl Validator<'_> {
             images.push(("render".into(), r.span(), "background", rel.as_str()));
         }
         for (label, span, field, rel) in images {
-            let full = self.assets.locate(rel);
+            let full = self.locate(rel);
             if !seen.insert(full.clone()) {
                 continue;
             }
@@ -1304,7 +1404,7 @@ impl Validator<'_> {
                 top: self.radiance(&at, "background", top)?,
             }),
             Some(BackgroundDef::Image(rel)) => images
-                .load(&self.assets, &rel)
+                .load(self, &rel)
                 .map(Background::Image)
                 .map_err(|e| self.field_error(&at, "background", e)),
         }
@@ -1466,7 +1566,7 @@ impl Validator<'_> {
                 };
                 let uv = self.uv_transform(&at, t)?;
                 images
-                    .load(&self.assets, rel)
+                    .load(self, rel)
                     .map(|image| Texture::Image { image, uv })
                     .map_err(|e| self.field_error(&at, "path", e))
             }
@@ -1702,8 +1802,8 @@ struct Images {
 }
 
 impl Images {
-    fn load(&mut self, assets: &Assets, rel: &str) -> Result<Arc<ImageTexture>, String> {
-        let path = assets.locate(rel);
+    fn load(&mut self, v: &Validator, rel: &str) -> Result<Arc<ImageTexture>, String> {
+        let (path, assets) = (v.locate(rel), &v.assets);
         if let Some(img) = self.loaded.get(&path) {
             return Ok(img.clone());
         }

@@ -109,6 +109,23 @@ pub struct Geometry {
 }
 
 impl Geometry {
+    /// Whether `a` and `b` prepare to the same geometry: the same objects' names and shapes
+    /// and the same lights' shadow-ray end points (the light buffers' centres), everything
+    /// [`Geometry::new`] reads. Then an edit between them need rebuild none of it.
+    pub fn same_for(a: &Scene, b: &Scene) -> bool {
+        a.origin == b.origin
+            && a.objects.len() == b.objects.len()
+            && a.objects
+                .iter()
+                .zip(&b.objects)
+                .all(|(x, y)| x.name == y.name && x.shape == y.shape)
+            && a.lights.len() == b.lights.len()
+            && a.lights
+                .iter()
+                .zip(&b.lights)
+                .all(|(x, y)| x.position() == y.position())
+    }
+
     /// Flattens `scene`'s shapes and builds the acceleration layer with `options`.
     pub fn new(scene: &Scene, options: AccelOptions) -> Self {
         let mut primitives = Vec::new();

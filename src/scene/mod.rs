@@ -13,13 +13,18 @@ mod file;
 mod geometry;
 mod obj;
 mod prepared;
+mod save;
 mod spans;
 
 pub use camera_table::camera_table;
 pub use description::{RenderDefaults, Scene, SceneObject, ShapeDesc};
-pub use edit::{EditError, check_camera};
+pub use edit::{EditError, MaterialProblem, check_camera, check_material};
 pub use error::SceneError;
-pub use file::{Assets, load_scene, parse_scene, parse_scene_with};
+pub use file::{
+    Assets, LoadedScene, ObjectOrigin, SceneLoad, load_scene, load_scene_file, parse_loaded,
+    parse_scene, parse_scene_with,
+};
 pub use geometry::{Geometry, ObjectGeometry, PlanarUv};
 pub use obj::{LineError, ObjFile, ObjPart, parse_obj};
 pub use prepared::PreparedScene;
+pub use save::{SaveError, SavedText, saved_text};

@@ -30,6 +30,38 @@ impl PreparedScene {
         (depth.is_finite() && depth > 0.0).then_some(depth)
     }
 
+    /// The object seen through image point (x, y), in pixels: what a click picks; None
+    /// where the ray meets nothing.
+    pub fn object_at(&self, rays: &crate::camera::CameraRays, x: f32, y: f32) -> Option<usize> {
+        let q = crate::geometry::RayQuery::new(rays.ray(x, y));
+        let accel = self.geometry.accel();
+        let hit = accel.nearest_hit(&q, crate::accel::Reach::After(0.0))?;
+        Some(accel.primitive(hit.primitive).object as usize)
+    }
+
+    /// Which pixels of a `width` × `height` image show object `object` (through each
+    /// pixel's centre), row by row: where the viewer outlines a selection.
+    pub fn coverage(
+        &self,
+        rays: &crate::camera::CameraRays,
+        width: u32,
+        height: u32,
+        object: usize,
+    ) -> Vec<bool> {
+        use rayon::prelude::*;
+        let mut covered = vec![false; width as usize * height as usize];
+        covered
+            .par_chunks_mut(width.max(1) as usize)
+            .enumerate()
+            .for_each(|(y, row)| {
+                for (x, c) in row.iter_mut().enumerate() {
+                    let at = self.object_at(rays, x as f32 + 0.5, y as f32 + 0.5);
+                    *c = at == Some(object);
+                }
+            });
+        covered
+    }
+
     /// Prepares `scene` with every shortcut on.
     pub fn new(scene: &Scene) -> Self {
         Self::with_options(scene, AccelOptions::ALL)
@@ -39,15 +71,65 @@ impl PreparedScene {
     pub fn with_options(scene: &Scene, options: AccelOptions) -> Self {
         Self {
             geometry: Arc::new(Geometry::new(scene, options)),
-            appearance: Appearance::new(
-                scene.objects.iter().map(|o| o.material.clone()).collect(),
-                scene.objects.iter().map(|o| o.casts_shadow).collect(),
-                scene.lights.clone(),
-                scene.ambient,
-                scene.background.clone(),
-                scene.render.max_depth,
-            )
-            .with_fog(scene.fog),
+            appearance: Self::appearance_of(scene),
         }
+    }
+
+    /// `edited` prepared, where `self` is `before` prepared: the geometry is shared when
+    /// the edit left it unchanged (a material, a light's colour, the background), so only
+    /// the appearance tables are made again.
+    pub fn updated(&self, before: &Scene, edited: &Scene) -> Self {
+        if Geometry::same_for(before, edited) {
+            Self {
+                geometry: self.geometry.clone(),
+                appearance: Self::appearance_of(edited),
+            }
+        } else {
+            Self::new(edited)
+        }
+    }
+
+    /// The appearance tables of `scene`: materials, shadow flags, lights, ambient light,
+    /// background, depth and fog.
+    fn appearance_of(scene: &Scene) -> Appearance {
+        Appearance::new(
+            scene.objects.iter().map(|o| o.material.clone()).collect(),
+            scene.objects.iter().map(|o| o.casts_shadow).collect(),
+            scene.lights.clone(),
+            scene.ambient,
+            scene.background.clone(),
+            scene.render.max_depth,
+        )
+        .with_fog(scene.fog)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec3;
+
+    /// A material or light-colour edit keeps the geometry (the same allocation); moving a
+    /// light or a shape does not, since the light buffers and the BVH depend on them.
+    #[test]
+    fn only_edits_of_geometry_rebuild_it() {
+        let scene = crate::seed::scene().unwrap();
+        let prepared = PreparedScene::new(&scene);
+        let mut recoloured = scene.clone();
+        let mut m = recoloured.objects[0].material.clone();
+        m.specular = 0.1;
+        recoloured.set_material(0, m).unwrap();
+        recoloured.set_light_at(0, Vec3::splat(0.3), None).unwrap();
+        recoloured.set_ambient(Vec3::splat(0.3)).unwrap();
+        let updated = prepared.updated(&scene, &recoloured);
+        assert!(Arc::ptr_eq(&updated.geometry, &prepared.geometry));
+        assert_eq!(updated.appearance.material(0).specular, 0.1);
+        let mut moved = scene.clone();
+        let at = moved.lights[0].center().unwrap() + Vec3::Y;
+        moved.set_light_at(0, Vec3::ONE, Some(at)).unwrap();
+        assert!(!Arc::ptr_eq(
+            &prepared.updated(&scene, &moved).geometry,
+            &prepared.geometry
+        ));
     }
 }

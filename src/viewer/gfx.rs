@@ -180,9 +180,23 @@ fn copy_image(frame: &mut [u8], fw: u32, fh: u32, x0: u32, p: &Published) {
     if cols == 0 {
         return;
     }
+    let outline = p
+        .outline
+        .as_deref()
+        .filter(|o| o.len() == p.width as usize * p.height as usize);
     for y in 0..rows {
         let src = y * p.width as usize * 4;
         let dst = (y * fw as usize + x0 as usize) * 4;
-        frame[dst..dst + cols * 4].copy_from_slice(&p.rgba[src..src + cols * 4]);
+        let row = &mut frame[dst..dst + cols * 4];
+        row.copy_from_slice(&p.rgba[src..src + cols * 4]);
+        if let Some(outline) = outline {
+            let marks = &outline[y * p.width as usize..][..cols];
+            for (pixel, _) in row.chunks_exact_mut(4).zip(marks).filter(|(_, m)| **m) {
+                pixel.copy_from_slice(&SELECTION_COLOR);
+            }
+        }
     }
 }
+
+/// The colour the selected object is outlined in on screen.
+const SELECTION_COLOR: [u8; 4] = [255, 150, 0, 255];

@@ -3,19 +3,27 @@
 //! this thread only handles input, copies finished passes into the framebuffer, and draws.
 
 mod camera_input;
+mod document;
 mod gfx;
+mod history;
 mod panel;
+mod recent;
 mod render_thread;
 mod screenshot;
+mod watch;
 
 use anyhow::{Context, Result, anyhow};
 use camera_input::CameraInput;
+use document::{Document, LoadMessage};
 use gfx::Gfx;
+use history::{EditKey, History};
 use panel::{PANEL_WIDTH, PanelState};
 use prism::render::{AdaptiveSettings, RenderSettings};
-use prism::scene::Scene;
+use prism::scene::{Scene, SceneLoad};
 use render_thread::{RenderThread, Request, Status};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+use std::sync::mpsc::{Receiver, channel};
 use std::time::{Duration, Instant};
 use winit::application::ApplicationHandler;
 use winit::dpi::{PhysicalPosition, PhysicalSize};
@@ -39,10 +47,23 @@ struct EguiClaims {
 #[derive(Debug, Clone, Copy)]
 struct Wake;
 
+/// The scene the viewer opens with.
+pub enum Start {
+    /// The built-in seed scene.
+    Seed(Scene),
+    /// A scene file, as loaded (or refused: the window then opens with the error shown).
+    File {
+        /// The file.
+        path: PathBuf,
+        /// Its load.
+        load: SceneLoad,
+    },
+}
+
 /// What the viewer opens with, resolved and checked by the command line.
 pub struct Launch {
     /// The scene to show.
-    pub scene: Scene,
+    pub start: Start,
     /// The image size (beside the panel) and anti-aliasing level to start with.
     pub settings: RenderSettings,
     /// Where screenshots are saved.
@@ -52,7 +73,7 @@ pub struct Launch {
 /// Opens the window and runs until it closes.
 pub fn run(launch: Launch) -> Result<()> {
     let Launch {
-        scene,
+        start,
         settings: mut probe,
         screenshot_dir,
     } = launch;
@@ -79,23 +100,72 @@ pub fn run(launch: Launch) -> Result<()> {
         }
         .into());
     }
-    let event_loop = EventLoop::<Wake>::with_user_event().build().map_err(|e| {
-        anyhow!(
-            "cannot open a window ({e}); is there a display? \
-             `prism render` renders without one"
-        )
-    })?;
+    let event_loop = match EventLoop::<Wake>::with_user_event().build() {
+        Ok(event_loop) => event_loop,
+        // Without a window, a scene that failed to load is the error to report.
+        Err(e) => {
+            if let Start::File { load, .. } = start
+                && let Err(scene_error) = load.result
+            {
+                return Err(scene_error.into());
+            }
+            return Err(anyhow!(
+                "cannot open a window ({e}); is there a display? \
+                 `prism render` renders without one"
+            ));
+        }
+    };
     event_loop.set_control_flow(ControlFlow::Wait);
-    // A tap moves 1/64 of the scene's size; a held key flies a quarter of it a second.
-    let step = scene
-        .bounds()
-        .map_or(0.625, |b| ((b.max - b.min).length() / 64.0).max(1e-3));
+    let (sender, loads) = channel();
+    let proxy = Mutex::new(event_loop.create_proxy());
+    let mut document = Document::new(sender, move || {
+        let _ = proxy
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .send_event(Wake);
+    });
+    let scene = match start {
+        Start::Seed(scene) => {
+            document.loaded = prism::seed::loaded().ok();
+            document.saved = Some(scene.clone());
+            scene
+        }
+        Start::File { path, load } => {
+            document.path = Some(path.clone());
+            document.watch(&path, load.files);
+            match load.result {
+                Ok(loaded) => {
+                    let scene = loaded.scene.clone();
+                    document.saved = Some(scene.clone());
+                    document.loaded = Some(loaded);
+                    scene
+                }
+                Err(e) => {
+                    eprintln!("prism: error: the scene did not load: {e}");
+                    document.error = Some(e.to_string());
+                    empty_scene()
+                }
+            }
+        }
+    };
+    let recent_list = recent::list_path();
+    let mut recent = recent_list.as_deref().map(recent::read).unwrap_or_default();
+    if let (Some(path), Some(list)) = (&document.path, &recent_list) {
+        recent = recent::with_opened(&recent, path);
+        let _ = recent::write(list, &recent);
+    }
+    let step = step_for(&scene);
     probe.width = probe.width.max(1);
     let mut app = App {
         proxy: event_loop.create_proxy(),
         screenshot_dir,
         panel: PanelState::new(scene, aa),
         input: CameraInput::new(step),
+        document,
+        loads,
+        history: History::new(),
+        recent,
+        seen_picks: 0,
         initial_image: (probe.width, probe.height),
         gfx: None,
         error: None,
@@ -121,11 +191,36 @@ pub fn run(launch: Launch) -> Result<()> {
     }
 }
 
+/// A tap moves 1/64 of the scene's size; a held key flies a quarter of it a second.
+fn step_for(scene: &Scene) -> f32 {
+    scene
+        .bounds()
+        .map_or(0.625, |b| ((b.max - b.min).length() / 64.0).max(1e-3))
+}
+
+/// What the window shows while no scene has loaded: nothing, under the default camera.
+fn empty_scene() -> Scene {
+    prism::scene::parse_scene(
+        "[camera]\neye = [0, 0, 0]\nfov = 40\n",
+        Path::new("(no scene)"),
+        Path::new("."),
+    )
+    .expect("the empty scene is valid")
+}
+
 struct App {
     proxy: EventLoopProxy<Wake>,
     screenshot_dir: PathBuf,
     panel: PanelState,
     input: CameraInput,
+    document: Document,
+    /// Finished loads of the scene file (the watcher's, Open's, F5's).
+    loads: Receiver<LoadMessage>,
+    history: History,
+    /// Recently opened scene files, newest first.
+    recent: Vec<PathBuf>,
+    /// How many picks the render thread had answered when last looked at.
+    seen_picks: u64,
     initial_image: (u32, u32),
     gfx: Option<Gfx>,
     error: Option<anyhow::Error>,
@@ -225,6 +320,14 @@ impl App {
         let input = g.egui_state.take_egui_input(&g.window);
         let mut changes = panel::Changes::default();
         self.panel.step = self.input.step;
+        self.panel.file = panel::FileStatus {
+            path: self.document.path.clone(),
+            error: self.document.error.clone(),
+            unsaved: self.document.unsaved(&self.panel.scene),
+            can_undo: self.history.can_undo(),
+            can_redo: self.history.can_redo(),
+            recent: self.recent.clone(),
+        };
         let panel = &mut self.panel;
         let status = &self.status;
         let output = g.egui_ctx.run_ui(input, |ui| {
@@ -268,6 +371,15 @@ impl App {
             eprintln!("prism: error: the render failed: {e}");
             self.render_error = Some(e.clone());
         }
+        // A pick's answer: the selection, named in the panel.
+        if status.picks != self.seen_picks {
+            self.seen_picks = status.picks;
+            self.panel.selected = status.picked;
+            match status.picked.and_then(|i| self.panel.scene.objects.get(i)) {
+                Some(o) => eprintln!("prism: selected {}", o.name),
+                None => eprintln!("prism: selected nothing"),
+            }
+        }
         // A focus click's distance, once the render thread has found it.
         if self.awaiting_focus
             && !status.preview
@@ -281,19 +393,19 @@ impl App {
         self.status = status;
     }
 
-    /// Sends what the panel changed to the render thread.
+    /// Sends what the panel changed to the render thread, and does what it asked.
     fn apply(&mut self, changes: panel::Changes) {
+        let now = Instant::now();
+        let edited = !changes.edits.is_empty();
+        for (key, before) in changes.edits {
+            self.history.record(&before, key, now);
+        }
+        if edited {
+            self.send_scene();
+        }
         let Some(g) = &self.gfx else { return };
-        for &object in &changes.materials {
-            let material = self.panel.scene.objects[object].material.clone();
-            g.render.send(Request::Material { object, material });
-        }
-        for &index in &changes.lights {
-            let light = self.panel.scene.lights[index];
-            g.render.send(Request::Light { index, light });
-        }
-        if changes.fog {
-            g.render.send(Request::Fog(self.panel.scene.fog));
+        if let Some(selection) = changes.select {
+            g.render.send(Request::Select(selection));
         }
         if changes.camera {
             self.send_camera(false);
@@ -305,6 +417,217 @@ impl App {
         if changes.screenshot {
             self.screenshot();
         }
+        if changes.save {
+            self.save();
+        }
+        if let Some(path) = changes.save_as {
+            self.save_as(path);
+        }
+        if let Some(path) = changes.open {
+            self.open(path);
+        }
+        if changes.reload {
+            self.reload();
+        }
+        if changes.undo {
+            self.undo();
+        }
+        if changes.redo {
+            self.redo();
+        }
+    }
+
+    /// The panel's scene to the render thread (which rebuilds only what changed).
+    fn send_scene(&self) {
+        if let Some(g) = &self.gfx {
+            g.render
+                .send(Request::Scene(Box::new(self.panel.scene.clone())));
+        }
+    }
+
+    /// Shows `text` in the panel and on stderr (for whoever launched the viewer, and for
+    /// the window test).
+    fn say(&mut self, text: String, error: bool) {
+        if error {
+            eprintln!("prism: error: {text}");
+        } else {
+            eprintln!("prism: {text}");
+        }
+        self.panel.message = Some((text, error));
+        if let Some(g) = &self.gfx {
+            g.window.request_redraw();
+        }
+    }
+
+    fn undo(&mut self) {
+        match self.history.undo(&self.panel.scene) {
+            Some(scene) => {
+                self.panel.set_scene(scene);
+                self.send_scene();
+                self.say("undid the last edit".into(), false);
+            }
+            None => self.say("nothing to undo".into(), false),
+        }
+    }
+
+    fn redo(&mut self) {
+        match self.history.redo(&self.panel.scene) {
+            Some(scene) => {
+                self.panel.set_scene(scene);
+                self.send_scene();
+                self.say("redid the edit".into(), false);
+            }
+            None => self.say("nothing to redo".into(), false),
+        }
+    }
+
+    /// Ctrl+S: the edits and the camera written into the scene file, atomically.
+    fn save(&mut self) {
+        match self.document.path.clone() {
+            Some(path) => {
+                self.write_scene(&path);
+            }
+            None => self.say(
+                "the built-in seed scene has no file: type a path in File and press Save as".into(),
+                true,
+            ),
+        }
+    }
+
+    /// Writes the scene to `path` (another file), then shows that file.
+    fn save_as(&mut self, path: PathBuf) {
+        if path.extension().is_none_or(|e| e != "toml") {
+            return self.say(
+                format!("{}: a scene file's name ends in .toml", path.display()),
+                true,
+            );
+        }
+        if self.write_scene(&path) {
+            if self.document.path.as_deref() != Some(path.as_path()) {
+                self.say(
+                    format!(
+                        "saved {}; textures and meshes are named relative to the file, so                          copy them beside it if it is in another folder",
+                        path.display()
+                    ),
+                    false,
+                );
+            }
+            self.document.path = Some(path.clone());
+            self.recent = recent::with_opened(&self.recent, &path);
+            if let Some(list) = recent::list_path() {
+                let _ = recent::write(&list, &self.recent);
+            }
+            self.document.load_in_background(path);
+        }
+    }
+
+    /// The scene and camera written into the last good load's text, at `path`; true when
+    /// written.
+    fn write_scene(&mut self, path: &Path) -> bool {
+        if let Some(e) = &self.document.error {
+            let text = format!("not saved: the file has an error to fix first ({e})");
+            self.say(text, true);
+            return false;
+        }
+        let Some(loaded) = &self.document.loaded else {
+            self.say("not saved: no scene file has loaded".into(), true);
+            return false;
+        };
+        let saved = match prism::scene::saved_text(loaded, &self.panel.scene, &self.panel.camera) {
+            Ok(saved) => saved,
+            Err(e) => {
+                self.say(format!("not saved: {e}"), true);
+                return false;
+            }
+        };
+        match prism::render::write_bytes(path, saved.text.as_bytes()) {
+            Ok(_) => {
+                self.document.saved = Some(self.panel.scene.clone());
+                let mut text = format!("saved {}", path.display());
+                for s in &saved.skipped {
+                    text.push_str(&format!("; not saved: {s}"));
+                }
+                self.say(text, !saved.skipped.is_empty());
+                true
+            }
+            Err(e) => {
+                self.say(format!("not saved: {e}"), true);
+                false
+            }
+        }
+    }
+
+    /// Opens another scene file (loaded on a thread; the window shows it when it is ready).
+    fn open(&mut self, path: PathBuf) {
+        self.say(format!("opening {}", path.display()), false);
+        self.document.load_in_background(path);
+    }
+
+    /// F5: loads the scene file again now.
+    fn reload(&mut self) {
+        if let Some(path) = self.document.path.clone() {
+            self.document.load_in_background(path);
+        }
+    }
+
+    /// Takes the finished loads: a good one replaces the scene, a bad one is shown and the
+    /// last good scene stays.
+    fn take_loads(&mut self) {
+        while let Ok(message) = self.loads.try_recv() {
+            self.on_load(message);
+        }
+    }
+
+    fn on_load(&mut self, LoadMessage { path, load, asked }: LoadMessage) {
+        let same_file = self.document.path.as_deref() == Some(path.as_path());
+        if asked || !same_file {
+            // A load asked for (Open, F5, Save as) watches what it read from now on.
+            self.document.watch(&path, load.files);
+        }
+        if !same_file {
+            self.document.path = Some(path.clone());
+            self.recent = recent::with_opened(&self.recent, &path);
+            if let Some(list) = recent::list_path() {
+                let _ = recent::write(&list, &self.recent);
+            }
+        }
+        let loaded = match load.result {
+            Ok(loaded) => loaded,
+            Err(e) => {
+                let text = e.to_string();
+                self.document.error = Some(text.clone());
+                return self.say(format!("the scene did not load: {text}"), true);
+            }
+        };
+        let scene = loaded.scene.clone();
+        let camera = match (&self.document.loaded, same_file) {
+            (Some(before), true) => {
+                document::camera_after_reload(&before.scene, &scene, self.panel.camera)
+            }
+            _ => scene.camera,
+        };
+        if same_file {
+            // Unsaved edits are one undo away rather than lost.
+            if self.document.unsaved(&self.panel.scene) {
+                self.history
+                    .record(&self.panel.scene, EditKey("reload".into()), Instant::now());
+            }
+            self.history.break_run();
+        } else {
+            self.history = History::new();
+            self.panel.initial_camera = scene.camera;
+            self.input.step = step_for(&scene);
+            self.panel.samples = scene.render.samples;
+        }
+        let what = if same_file { "reloaded" } else { "opened" };
+        self.document.error = None;
+        self.document.saved = Some(scene.clone());
+        self.document.loaded = Some(loaded);
+        self.panel.set_scene(scene);
+        self.panel.camera = camera;
+        self.send_scene();
+        self.send_camera(false);
+        self.say(format!("{what} {}", path.display()), false);
     }
 
     fn resize(&mut self, size: PhysicalSize<u32>) -> Result<()> {
@@ -359,11 +682,37 @@ impl App {
             return;
         };
         let pressed = event.state == ElementState::Pressed;
-        // Ctrl+Q quits wherever the keyboard focus is (the panel's too).
-        if pressed && code == KeyCode::KeyQ && self.modifiers.control_key() {
+        let ctrl = self.modifiers.control_key();
+        // Ctrl+Q quits and Ctrl+S saves wherever the keyboard focus is (the panel's too).
+        if pressed && ctrl && code == KeyCode::KeyQ {
             return self.close(event_loop);
         }
+        if pressed && ctrl && code == KeyCode::KeyS && !event.repeat {
+            return self.save();
+        }
         if pressed && to_egui {
+            return;
+        }
+        if pressed && ctrl && matches!(code, KeyCode::KeyZ | KeyCode::KeyY) {
+            if code == KeyCode::KeyY || self.modifiers.shift_key() {
+                self.redo();
+            } else {
+                self.undo();
+            }
+            return;
+        }
+        if pressed && !event.repeat && code == KeyCode::F5 {
+            return self.reload();
+        }
+        if pressed && code == KeyCode::Escape && self.panel.selected.is_some() {
+            self.panel.selected = None;
+            if let Some(g) = &self.gfx {
+                g.render.send(Request::Select(None));
+            }
+            return;
+        }
+        // Ctrl with a movement key is a command, not a move.
+        if pressed && ctrl {
             return;
         }
         let was_flying = self.input.flying();
@@ -410,20 +759,25 @@ impl App {
                 }
             }
             ElementState::Released => {
+                let dragged = self.press.is_none_or(|(_, moved)| moved > 0.0);
                 if self.input.dragging {
                     self.input.dragging = false;
-                    if !self.input.moving() {
+                    // A drag showed coarse previews: refine where it ended.
+                    if dragged && !self.input.moving() {
                         self.send_camera(false);
                     }
                 }
-                // A click (no drag) with a lens focuses on what is under the cursor.
+                // A click (no drag) selects what is under the cursor, and with a lens
+                // focuses on it.
                 if let (Some((at, moved)), Some(g)) = (self.press.take(), &self.gfx)
                     && moved < 3.0
-                    && self.panel.camera.aperture > 0.0
                 {
-                    let x = (at.x - g.panel_px() as f64) as f32;
-                    g.render.send(Request::FocusAt { x, y: at.y as f32 });
-                    self.awaiting_focus = true;
+                    let (x, y) = ((at.x - g.panel_px() as f64) as f32, at.y as f32);
+                    g.render.send(Request::Pick { x, y });
+                    if self.panel.camera.aperture > 0.0 {
+                        g.render.send(Request::FocusAt { x, y });
+                        self.awaiting_focus = true;
+                    }
                 }
             }
         }
@@ -473,6 +827,7 @@ impl ApplicationHandler<Wake> for App {
     }
 
     fn user_event(&mut self, _: &ActiveEventLoop, _: Wake) {
+        self.take_loads();
         self.dirty = true;
         if let Some(g) = &self.gfx {
             g.window.request_redraw();
@@ -521,6 +876,7 @@ impl ApplicationHandler<Wake> for App {
             WindowEvent::MouseWheel { delta, .. } if over_image && !egui.wheel => {
                 self.on_wheel(delta)
             }
+            WindowEvent::DroppedFile(path) => self.open(path),
             _ => {}
         }
     }

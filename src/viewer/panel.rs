@@ -1,12 +1,19 @@
-//! The egui side panel: material sliders, anti-aliasing, camera, screenshot, and status.
+//! The egui side panel: the file (save, open, undo), the objects and what the selected one
+//! is made of, the lights, the scene's settings, anti-aliasing, the camera, and status.
+//! Every edit goes through `Scene`'s checked setters (the scene file's limits), and comes
+//! out as a `Changes` entry with the scene as it was before, for undo.
 
+use super::history::EditKey;
 use super::render_thread::Status;
 use egui::{DragValue, RichText, Slider, SliderClamping};
-use prism::appearance::LightKind;
+use glam::{DVec3, Vec3};
+use prism::appearance::{Background, Falloff, LightKind, Texture};
 use prism::camera::Camera;
-use prism::scene::Scene;
+use prism::limits::{MAX_COORDINATE, MAX_PHONG_FACTOR, MAX_RADIANCE, MAX_SHININESS, MIN_LENGTH};
 use prism::scene::check_camera;
+use prism::scene::{EditError, Scene};
 use std::ops::RangeInclusive;
+use std::path::PathBuf;
 
 /// Panel width in points.
 pub const PANEL_WIDTH: f32 = 300.0;
@@ -31,17 +38,37 @@ pub const SLIDERS: SliderRanges = SliderRanges {
     vfov: prism::limits::VFOV,
 };
 
-/// What the user changed this frame.
+/// What the user changed or asked for this frame.
 #[derive(Default)]
 pub struct Changes {
-    /// Objects whose material changed.
-    pub materials: Vec<usize>,
-    /// Lights that changed.
-    pub lights: Vec<usize>,
-    pub fog: bool,
+    /// Scene edits, each with what it changed and the scene before it.
+    pub edits: Vec<(EditKey, Scene)>,
     pub camera: bool,
     pub settings: bool,
     pub screenshot: bool,
+    /// A new selection (None inside: none).
+    pub select: Option<Option<usize>>,
+    pub save: bool,
+    pub save_as: Option<PathBuf>,
+    pub open: Option<PathBuf>,
+    pub reload: bool,
+    pub undo: bool,
+    pub redo: bool,
+}
+
+/// The file the viewer shows, as the panel reports it.
+#[derive(Default)]
+pub struct FileStatus {
+    /// The scene file; None for the built-in seed.
+    pub path: Option<PathBuf>,
+    /// The last load's error (file, line and what), shown until a load succeeds.
+    pub error: Option<String>,
+    /// Edits not yet saved.
+    pub unsaved: bool,
+    pub can_undo: bool,
+    pub can_redo: bool,
+    /// Recently opened scene files, newest first.
+    pub recent: Vec<PathBuf>,
 }
 
 pub struct PanelState {
@@ -55,30 +82,18 @@ pub struct PanelState {
     pub samples: Option<u32>,
     pub adaptive: bool,
     pub tolerance: f32,
-    /// The last screenshot or input message, and whether it is an error.
+    /// The last screenshot, save or input message, and whether it is an error.
     pub message: Option<(String, bool)>,
-    refractive: Vec<usize>,
-    transparent: Vec<usize>,
-    /// Objects that reflect (a roughness slider each).
-    reflective: Vec<usize>,
+    /// The selected object.
+    pub selected: Option<usize>,
+    pub file: FileStatus,
+    /// The path typed into the File section, to open or save as.
+    path_entry: String,
 }
 
 impl PanelState {
     pub fn new(scene: Scene, aa: u32) -> Self {
-        let refractive = (0..scene.objects.len())
-            .filter(|&i| scene.objects[i].material.eta.is_some())
-            .collect();
-        let transparent = (0..scene.objects.len())
-            .filter(|&i| scene.objects[i].material.transparency > 0.0)
-            .collect();
-        let reflective = (0..scene.objects.len())
-            .filter(|&i| {
-                let m = &scene.objects[i].material;
-                m.reflectivity > 0.0 || m.fresnel
-            })
-            .collect();
         Self {
-            reflective,
             camera: scene.camera,
             initial_camera: scene.camera,
             samples: scene.render.samples,
@@ -88,8 +103,34 @@ impl PanelState {
             adaptive: false,
             tolerance: prism::render::AdaptiveSettings::default().tolerance,
             message: None,
-            refractive,
-            transparent,
+            selected: None,
+            file: FileStatus::default(),
+            path_entry: String::new(),
+        }
+    }
+
+    /// Shows a scene loaded anew (a reload, an undo, another file): the selection is kept
+    /// while it still names an object.
+    pub fn set_scene(&mut self, scene: Scene) {
+        if self.selected.is_some_and(|s| s >= scene.objects.len()) {
+            self.selected = None;
+        }
+        self.scene = scene;
+    }
+
+    /// Applies `edit` to the scene; a change is reported with `key` and the scene before
+    /// it, a refusal shown as the panel's message.
+    fn edit(
+        &mut self,
+        changes: &mut Changes,
+        key: String,
+        edit: impl FnOnce(&mut Scene) -> Result<(), EditError>,
+    ) {
+        let before = self.scene.clone();
+        match edit(&mut self.scene) {
+            Ok(()) if self.scene != before => changes.edits.push((EditKey(key), before)),
+            Ok(()) => {}
+            Err(e) => self.message = Some((e.to_string(), true)),
         }
     }
 
@@ -97,48 +138,31 @@ impl PanelState {
         let mut changes = Changes::default();
         egui::ScrollArea::vertical().show(ui, |ui| {
             ui.heading("prism");
-            // A failed render matters more than any control: it goes first.
+            let error_color = ui.visuals().error_fg_color;
+            // A failed render or load matters more than any control: it goes first.
             if let Some(e) = &status.error {
                 let text = format!("The render failed: {e}. Change anything to try again.");
-                ui.label(RichText::new(text).color(ui.visuals().error_fg_color));
+                ui.label(RichText::new(text).color(error_color));
                 ui.separator();
             }
-            self.materials(ui, &mut changes);
-            ui.separator();
-            self.effects(ui, &mut changes);
-            ui.separator();
-            ui.label(RichText::new("Anti-aliasing").strong());
-            let aa = ui.add(
-                Slider::new(&mut self.aa, SLIDERS.aa)
-                    .clamping(SliderClamping::Always)
-                    .text("level N (N×N)"),
-            );
-            // Past the N×N grid for noisy effects (soft shadows, a lens, glossy lobes).
-            let mut custom = self.samples.is_some();
-            let mut count = self.samples.unwrap_or(self.aa * self.aa);
-            let samples = ui
-                .horizontal(|ui| {
-                    let c = ui.checkbox(&mut custom, "samples per pixel");
-                    let n = ui.add_enabled(
-                        custom,
-                        DragValue::new(&mut count).range(prism::limits::SAMPLES),
-                    );
-                    c.changed() || n.changed()
-                })
-                .inner;
-            self.samples = custom.then_some(count);
-            let adaptive = ui.checkbox(&mut self.adaptive, "adaptive sampling");
-            let tol = ui.add_enabled(
-                self.adaptive,
-                Slider::new(&mut self.tolerance, SLIDERS.tolerance)
-                    .logarithmic(true)
-                    .clamping(SliderClamping::Always)
-                    .text("tolerance"),
-            );
-            if !self.tolerance.is_finite() || self.tolerance <= 0.0 {
-                self.tolerance = prism::render::AdaptiveSettings::default().tolerance;
+            if let Some(e) = &self.file.error {
+                let text =
+                    format!("{e}\nThe last good scene stays on screen until the file is fixed.");
+                ui.label(RichText::new(text).color(error_color));
+                ui.separator();
             }
-            changes.settings = aa.changed() || samples || adaptive.changed() || tol.changed();
+            self.file_section(ui, &mut changes);
+            ui.separator();
+            self.objects(ui, &mut changes);
+            ui.separator();
+            egui::CollapsingHeader::new(RichText::new("Lights").strong())
+                .default_open(true)
+                .show(ui, |ui| self.lights(ui, &mut changes));
+            egui::CollapsingHeader::new(RichText::new("Scene").strong())
+                .default_open(true)
+                .show(ui, |ui| self.scene_settings(ui, &mut changes));
+            ui.separator();
+            self.sampling(ui, &mut changes);
             ui.separator();
             self.camera_controls(ui, &mut changes);
             ui.separator();
@@ -147,7 +171,7 @@ impl PanelState {
             }
             if let Some((text, error)) = &self.message {
                 let color = if *error {
-                    ui.visuals().error_fg_color
+                    error_color
                 } else {
                     ui.visuals().text_color()
                 };
@@ -156,73 +180,250 @@ impl PanelState {
             ui.separator();
             status_lines(ui, status);
             ui.separator();
-            ui.small("Drag: look · WASD: move · Q/E: down/up · scroll: zoom · Ctrl+Q: quit");
+            ui.small(
+                "Click: select · drag: look · WASD: move · Q/E: down/up · scroll: zoom · \
+                 Ctrl+S: save · Ctrl+Z / Ctrl+Shift+Z: undo / redo · F5: reload · \
+                 Esc: deselect · Ctrl+Q: quit",
+            );
         });
         changes
     }
 
-    fn materials(&mut self, ui: &mut egui::Ui, changes: &mut Changes) {
-        if !self.refractive.is_empty() {
-            ui.label(RichText::new("Refraction (eta)").strong());
+    fn file_section(&mut self, ui: &mut egui::Ui, changes: &mut Changes) {
+        ui.label(RichText::new("File").strong());
+        let name = match &self.file.path {
+            Some(p) => p.display().to_string(),
+            None => prism::seed::NAME.to_string(),
+        };
+        let unsaved = if self.file.unsaved { " (edited)" } else { "" };
+        ui.label(format!("{name}{unsaved}"));
+        ui.horizontal(|ui| {
+            let saveable = self.file.path.is_some() && self.file.error.is_none();
+            if ui
+                .add_enabled(saveable, egui::Button::new("Save"))
+                .on_hover_text("Ctrl+S: write the edits and the camera into the file")
+                .clicked()
+            {
+                changes.save = true;
+            }
+            if ui
+                .add_enabled(self.file.can_undo, egui::Button::new("Undo"))
+                .clicked()
+            {
+                changes.undo = true;
+            }
+            if ui
+                .add_enabled(self.file.can_redo, egui::Button::new("Redo"))
+                .clicked()
+            {
+                changes.redo = true;
+            }
+            if ui
+                .add_enabled(self.file.path.is_some(), egui::Button::new("Reload"))
+                .clicked()
+            {
+                changes.reload = true;
+            }
+        });
+        ui.horizontal(|ui| {
+            ui.add(
+                egui::TextEdit::singleline(&mut self.path_entry)
+                    .hint_text("path/to/scene.toml")
+                    .desired_width(150.0),
+            );
+            let path = || PathBuf::from(self.path_entry.trim());
+            let typed = !self.path_entry.trim().is_empty();
+            if ui.add_enabled(typed, egui::Button::new("Open")).clicked() {
+                changes.open = Some(path());
+            }
+            if ui
+                .add_enabled(typed, egui::Button::new("Save as"))
+                .clicked()
+            {
+                changes.save_as = Some(path());
+            }
+        });
+        // Collapsed, so that the panel's layout does not shift with the list's length.
+        egui::CollapsingHeader::new("Recent files (or drop a file on the window)")
+            .default_open(false)
+            .show(ui, |ui| {
+                for p in self.file.recent.clone() {
+                    if ui.small_button(p.display().to_string()).clicked() {
+                        changes.open = Some(p);
+                    }
+                }
+            });
+    }
+
+    /// The list of objects, and the selected one's material.
+    fn objects(&mut self, ui: &mut egui::Ui, changes: &mut Changes) {
+        ui.label(RichText::new("Objects").strong());
+        egui::ScrollArea::vertical()
+            .id_salt("objects")
+            .max_height(110.0)
+            .show(ui, |ui| {
+                for (i, o) in self.scene.objects.iter().enumerate() {
+                    let picked = self.selected == Some(i);
+                    if ui.selectable_label(picked, &o.name).clicked() {
+                        let new = if picked { None } else { Some(i) };
+                        self.selected = new;
+                        changes.select = Some(new);
+                    }
+                }
+            });
+        let Some(i) = self.selected else {
+            ui.small("Click an object in the image or the list to edit it.");
+            return;
+        };
+        ui.label(RichText::new(format!("Selected: {}", self.scene.objects[i].name)).strong());
+        let mut m = self.scene.objects[i].material.clone();
+        let before = m.clone();
+        let mut field = "";
+        match &mut m.texture {
+            Texture::Solid(c) => {
+                if color_row(ui, "colour", c, 0.0..=1.0, true) {
+                    field = "color";
+                }
+            }
+            other => {
+                ui.label(format!("colour: {} texture", texture_kind(other)));
+            }
         }
-        for &i in &self.refractive.clone() {
-            let name = self.scene.objects[i].name.clone();
-            let mut eta = self.scene.objects[i].material.eta.unwrap_or(1.0);
+        let factors: [(&str, &mut f32, f32, f32); 4] = [
+            ("ambient", &mut m.ambient, MAX_PHONG_FACTOR, 0.01),
+            ("diffuse", &mut m.diffuse, MAX_PHONG_FACTOR, 0.01),
+            ("specular", &mut m.specular, MAX_PHONG_FACTOR, 0.01),
+            ("shininess", &mut m.shininess, MAX_SHININESS, 1.0),
+        ];
+        ui.horizontal_wrapped(|ui| {
+            for (name, v, hi, speed) in factors {
+                let r = ui.add(
+                    DragValue::new(v)
+                        .range(0.0..=hi)
+                        .speed(speed)
+                        .prefix(format!("{name} ")),
+                );
+                if r.changed() {
+                    field = name;
+                }
+            }
+        });
+        for (name, v) in [
+            ("reflectivity", &mut m.reflectivity),
+            ("transparency", &mut m.transparency),
+        ] {
             let r = ui.add(
+                Slider::new(v, SLIDERS.transparency)
+                    .clamping(SliderClamping::Always)
+                    .text(name),
+            );
+            if r.changed() {
+                field = name;
+            }
+        }
+        let mut refracts = m.eta.is_some();
+        let mut eta = m.eta.unwrap_or(1.5);
+        ui.horizontal(|ui| {
+            let c = ui.checkbox(&mut refracts, "");
+            let r = ui.add_enabled(
+                refracts,
                 // The whole range a file may give, on a log scale centred on 1.
                 Slider::new(&mut eta, SLIDERS.eta)
                     .logarithmic(true)
                     .clamping(SliderClamping::Always)
                     .max_decimals(4)
-                    .text(&name),
+                    .text("eta"),
             );
-            if r.changed() {
-                match self.scene.set_eta(i, eta) {
-                    Ok(()) => changes.materials.push(i),
-                    Err(e) => self.message = Some((e.to_string(), true)),
-                }
+            if c.changed() || r.changed() {
+                field = "eta";
             }
+        });
+        m.eta = refracts.then_some(eta);
+        if !refracts {
+            m.fresnel = false;
         }
-        if !self.transparent.is_empty() {
-            ui.label(RichText::new("Transparency").strong());
+        let reflects = m.reflectivity > 0.0 || m.fresnel;
+        let r = ui.add_enabled(
+            reflects,
+            Slider::new(&mut m.roughness, prism::limits::ROUGHNESS)
+                .clamping(SliderClamping::Always)
+                .text("roughness"),
+        );
+        if r.changed() {
+            field = "roughness";
         }
-        for &i in &self.transparent.clone() {
-            let name = self.scene.objects[i].name.clone();
-            let mut t = self.scene.objects[i].material.transparency;
-            let r = ui.add(
-                Slider::new(&mut t, SLIDERS.transparency)
-                    .clamping(SliderClamping::Always)
-                    .text(&name),
-            );
-            if r.changed() {
-                match self.scene.set_transparency(i, t) {
-                    Ok(()) => changes.materials.push(i),
-                    Err(e) => self.message = Some((e.to_string(), true)),
-                }
-            }
+        if !reflects {
+            m.roughness = 0.0;
+        }
+        let glass = matches!(m.eta, Some(e) if e != 1.0) && m.conductor.is_none();
+        let r = ui.add_enabled(glass, egui::Checkbox::new(&mut m.fresnel, "Fresnel glass"));
+        if r.changed() {
+            field = "fresnel";
+        }
+        if color_row(ui, "emission", &mut m.emission, 0.0..=MAX_RADIANCE, false) {
+            field = "emission";
+        }
+        if m != before {
+            self.edit(changes, format!("object {i} {field}"), |s| {
+                s.set_material(i, m)
+            });
         }
     }
 
-    /// Lights' sizes and cones, glossy roughness, Fresnel glass and fog: each change
-    /// restarts the accumulation.
-    fn effects(&mut self, ui: &mut egui::Ui, changes: &mut Changes) {
-        ui.label(RichText::new("Lights and effects").strong());
+    /// Each light's colour, place, intensity, size or cone.
+    fn lights(&mut self, ui: &mut egui::Ui, changes: &mut Changes) {
+        let origin = self.scene.origin;
         for i in 0..self.scene.lights.len() {
+            let light = self.scene.lights[i];
+            let kind = match light.kind {
+                LightKind::Point { .. } => "point",
+                LightKind::Spot { .. } => "spot",
+                LightKind::Directional { .. } => "directional",
+                LightKind::Area { .. } => "area",
+            };
+            ui.label(format!("light {i} ({kind})"));
+            let mut color = light.color;
+            let mut center = light.center().map(|c| origin + c.as_dvec3());
+            let mut changed = color_row(ui, "colour", &mut color, 0.0..=MAX_RADIANCE, false);
+            if let Some(world) = &mut center {
+                changed |= position_row(ui, "at", world);
+            }
+            if changed {
+                let center = center.map(|w| (w - origin).as_vec3());
+                self.edit(changes, format!("light {i} place"), |s| {
+                    s.set_light_at(i, color, center)
+                });
+            }
+            if let Some(Falloff::InverseSquare { intensity }) =
+                self.scene.lights[i].clone().falloff_mut().copied()
+            {
+                let mut v = intensity;
+                let r = ui.add(
+                    DragValue::new(&mut v)
+                        .speed(intensity.max(1e-3) * 0.01)
+                        .range(0.0..=prism::limits::MAX_LIGHT_INTENSITY)
+                        .prefix("intensity "),
+                );
+                if r.changed() {
+                    self.edit(changes, format!("light {i} intensity"), |s| {
+                        s.set_light_intensity(i, v)
+                    });
+                }
+            }
             match self.scene.lights[i].kind {
                 LightKind::Area { shape, .. } => {
                     let mut size = shape.size();
-                    let step = size * 0.01;
+                    let speed = size * 0.01;
                     let r = ui.add(
                         DragValue::new(&mut size)
-                            .speed(step)
-                            .range(prism::limits::MIN_LENGTH as f32..=f32::MAX)
-                            .prefix(format!("light {i} size ")),
+                            .speed(speed)
+                            .range(MIN_LENGTH as f32..=f32::MAX)
+                            .prefix("size "),
                     );
                     if r.changed() {
-                        match self.scene.set_light_size(i, size) {
-                            Ok(()) => changes.lights.push(i),
-                            Err(e) => self.message = Some((e.to_string(), true)),
-                        }
+                        self.edit(changes, format!("light {i} size"), |s| {
+                            s.set_light_size(i, size)
+                        });
                     }
                 }
                 LightKind::Spot { cone, .. } => {
@@ -231,75 +432,113 @@ impl PanelState {
                         Slider::new(&mut angle, prism::limits::SPOT_ANGLE)
                             .logarithmic(true)
                             .clamping(SliderClamping::Always)
-                            .text(format!("spot {i} angle °")),
+                            .text("angle °"),
                     );
-                    let s = ui.add(
+                    let b = ui.add(
                         Slider::new(&mut softness, 0.0..=1.0)
                             .clamping(SliderClamping::Always)
-                            .text(format!("spot {i} softness")),
+                            .text("softness"),
                     );
-                    if a.changed() || s.changed() {
-                        match self.scene.set_spot(i, angle, softness) {
-                            Ok(()) => changes.lights.push(i),
-                            Err(e) => self.message = Some((e.to_string(), true)),
-                        }
+                    if a.changed() || b.changed() {
+                        self.edit(changes, format!("light {i} cone"), |s| {
+                            s.set_spot(i, angle, softness)
+                        });
                     }
                 }
                 LightKind::Point { .. } | LightKind::Directional { .. } => {}
             }
         }
-        for &i in &self.reflective.clone() {
-            let name = self.scene.objects[i].name.clone();
-            let mut r = self.scene.objects[i].material.roughness;
-            let changed = ui
-                .add(
-                    Slider::new(&mut r, prism::limits::ROUGHNESS)
-                        .clamping(SliderClamping::Always)
-                        .text(format!("{name} roughness")),
-                )
-                .changed();
-            if changed {
-                match self.scene.set_roughness(i, r) {
-                    Ok(()) => changes.materials.push(i),
-                    Err(e) => self.message = Some((e.to_string(), true)),
+    }
+
+    /// Background, ambient light, depth and fog.
+    fn scene_settings(&mut self, ui: &mut egui::Ui, changes: &mut Changes) {
+        match &self.scene.background {
+            Background::Solid(c) => {
+                let mut c = *c;
+                if color_row(ui, "background", &mut c, 0.0..=MAX_RADIANCE, false) {
+                    self.edit(changes, "background".into(), |s| s.set_background_color(c));
                 }
+            }
+            other => {
+                let kind = match other {
+                    Background::Gradient { .. } => "a gradient",
+                    _ => "an image",
+                };
+                ui.horizontal(|ui| {
+                    ui.label(format!("background: {kind}"));
+                    if ui.small_button("make it black").clicked() {
+                        self.edit(changes, "background".into(), |s| {
+                            s.set_background_color(Vec3::ZERO)
+                        });
+                    }
+                });
             }
         }
-        for &i in &self.refractive.clone() {
-            let m = &self.scene.objects[i].material;
-            if m.eta == Some(1.0) {
-                continue;
-            }
-            let mut on = m.fresnel;
-            let name = self.scene.objects[i].name.clone();
-            if ui
-                .checkbox(&mut on, format!("{name}: Fresnel glass"))
-                .changed()
-            {
-                match self.scene.set_fresnel(i, on) {
-                    Ok(()) => changes.materials.push(i),
-                    Err(e) => self.message = Some((e.to_string(), true)),
-                }
-            }
+        let mut ambient = self.scene.ambient;
+        if color_row(ui, "ambient", &mut ambient, 0.0..=MAX_RADIANCE, false) {
+            self.edit(changes, "ambient".into(), |s| s.set_ambient(ambient));
+        }
+        let mut depth = self.scene.render.max_depth;
+        if ui
+            .add(
+                DragValue::new(&mut depth)
+                    .range(prism::limits::DEPTH)
+                    .prefix("maximum depth "),
+            )
+            .changed()
+        {
+            self.edit(changes, "max_depth".into(), |s| s.set_max_depth(depth));
         }
         if let Some(fog) = self.scene.fog {
             let mut density = fog.density();
-            let step = density * 0.01;
+            let speed = density * 0.01;
             let changed = ui
                 .add(
                     DragValue::new(&mut density)
-                        .speed(step)
+                        .speed(speed)
                         .range(f32::MIN_POSITIVE..=prism::limits::MAX_EXTINCTION)
                         .prefix("fog density "),
                 )
                 .changed();
             if changed {
-                match self.scene.set_fog_density(density) {
-                    Ok(()) => changes.fog = true,
-                    Err(e) => self.message = Some((e.to_string(), true)),
-                }
+                self.edit(changes, "fog".into(), |s| s.set_fog_density(density));
             }
         }
+    }
+
+    fn sampling(&mut self, ui: &mut egui::Ui, changes: &mut Changes) {
+        ui.label(RichText::new("Anti-aliasing").strong());
+        let aa = ui.add(
+            Slider::new(&mut self.aa, SLIDERS.aa)
+                .clamping(SliderClamping::Always)
+                .text("level N (N×N)"),
+        );
+        // Past the N×N grid for noisy effects (soft shadows, a lens, glossy lobes).
+        let mut custom = self.samples.is_some();
+        let mut count = self.samples.unwrap_or(self.aa * self.aa);
+        let samples = ui
+            .horizontal(|ui| {
+                let c = ui.checkbox(&mut custom, "samples per pixel");
+                let n = ui.add_enabled(
+                    custom,
+                    DragValue::new(&mut count).range(prism::limits::SAMPLES),
+                );
+                c.changed() || n.changed()
+            })
+            .inner;
+        self.samples = custom.then_some(count);
+        let adaptive = ui.checkbox(&mut self.adaptive, "adaptive sampling");
+        let tol = ui.add_enabled(
+            self.adaptive,
+            Slider::new(&mut self.tolerance, SLIDERS.tolerance)
+                .logarithmic(true)
+                .clamping(SliderClamping::Always)
+                .text("tolerance"),
+        );
+        if !self.tolerance.is_finite() || self.tolerance <= 0.0 {
+            self.tolerance = prism::render::AdaptiveSettings::default().tolerance;
+        }
+        changes.settings = aa.changed() || samples || adaptive.changed() || tol.changed();
     }
 
     fn camera_controls(&mut self, ui: &mut egui::Ui, changes: &mut Changes) {
@@ -383,6 +622,69 @@ impl PanelState {
                 Err(e) => self.message = Some((e.to_string(), true)),
             }
         }
+    }
+}
+
+/// Three numbers for a colour (within `range` per channel) with, for a reflectance
+/// (`picker`), egui's colour picker beside them; true when any changed.
+fn color_row(
+    ui: &mut egui::Ui,
+    label: &str,
+    c: &mut Vec3,
+    range: RangeInclusive<f32>,
+    picker: bool,
+) -> bool {
+    ui.horizontal(|ui| {
+        ui.label(label);
+        let mut changed = false;
+        if picker {
+            let mut rgb = c.to_array();
+            if ui.color_edit_button_rgb(&mut rgb).changed() {
+                *c = Vec3::from_array(rgb)
+                    .clamp(Vec3::splat(*range.start()), Vec3::splat(*range.end()));
+                changed = true;
+            }
+        }
+        for (v, name) in [(&mut c.x, "r "), (&mut c.y, "g "), (&mut c.z, "b ")] {
+            let r = ui.add(
+                DragValue::new(v)
+                    .range(range.clone())
+                    .speed(0.005)
+                    .max_decimals(4)
+                    .prefix(name),
+            );
+            changed |= r.changed();
+        }
+        changed
+    })
+    .inner
+}
+
+/// A position in world coordinates; true when it changed.
+fn position_row(ui: &mut egui::Ui, label: &str, p: &mut DVec3) -> bool {
+    ui.horizontal(|ui| {
+        ui.label(label);
+        let mut changed = false;
+        for (v, name) in [(&mut p.x, "x "), (&mut p.y, "y "), (&mut p.z, "z ")] {
+            let r = ui.add(
+                DragValue::new(v)
+                    .range(-MAX_COORDINATE..=MAX_COORDINATE)
+                    .speed(0.05)
+                    .prefix(name),
+            );
+            changed |= r.changed();
+        }
+        changed
+    })
+    .inner
+}
+
+fn texture_kind(t: &Texture) -> &'static str {
+    match t {
+        Texture::Solid(_) => "solid",
+        Texture::Checker { .. } => "checker",
+        Texture::Stripes { .. } => "stripes",
+        Texture::Image { .. } => "image",
     }
 }
 

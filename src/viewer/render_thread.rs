@@ -3,7 +3,6 @@
 //! request, cancels the pass in flight at the next band of rows. Scenes are prepared here,
 //! never on the UI thread, and an appearance edit changes a table in place.
 
-use prism::appearance::{Fog, Light, Material};
 use prism::camera::Camera;
 use prism::render::{PassOutcome, ProgressiveRender, RenderSettings};
 use prism::scene::{PreparedScene, Scene};
@@ -17,11 +16,9 @@ use std::time::Instant;
 pub const PREVIEW_BLOCK: u32 = 4;
 
 pub enum Request {
-    /// Object `object`'s material changed (already validated): no geometry is rebuilt.
-    Material {
-        object: usize,
-        material: Material,
-    },
+    /// The scene changed (an edit, already validated, an undo, a reload): geometry is
+    /// rebuilt only if the edit changed it.
+    Scene(Box<Scene>),
     /// `moving`: the camera is still being dragged or flown, so show a fast coarse preview
     /// and wait for the next position instead of refining.
     Camera {
@@ -29,18 +26,19 @@ pub enum Request {
         moving: bool,
     },
     Settings(RenderSettings),
-    /// Light `index` changed (already validated) but not its shadow-ray end point.
-    Light {
-        index: usize,
-        light: Light,
-    },
-    /// The fog changed (already validated).
-    Fog(Option<Fog>),
     /// Focus the lens on what lies under image point (x, y), in pixels.
     FocusAt {
         x: f32,
         y: f32,
     },
+    /// Select the object under image point (x, y) (none there: no selection); the answer
+    /// comes in `Status::picked`.
+    Pick {
+        x: f32,
+        y: f32,
+    },
+    /// Select this object (from the panel's list), or none.
+    Select(Option<usize>),
 }
 
 /// What the render thread reports alongside each image.
@@ -63,6 +61,10 @@ pub struct Status {
     /// Why the last pass failed (a panic in the tracer): shown in the panel, and the
     /// viewer's exit code reports it.
     pub error: Option<String>,
+    /// The object the last pick found (None: the background), and a count of the picks
+    /// answered, so that the UI sees each answer once.
+    pub picked: Option<usize>,
+    pub picks: u64,
 }
 
 /// The latest published image, as RGBA8 rows.
@@ -74,6 +76,9 @@ pub struct Published {
     /// Bumped with every publication, so the UI copies only what is new.
     pub serial: u64,
     pub status: Status,
+    /// The pixels around the selected object (an outline two pixels wide), or None with no
+    /// selection or while the camera moves. Shown on screen only, never in a screenshot.
+    pub outline: Option<Arc<Vec<bool>>>,
 }
 
 pub struct RenderThread {
@@ -102,9 +107,14 @@ impl RenderThread {
             .spawn(move || {
                 let job =
                     ProgressiveRender::new(Arc::new(PreparedScene::new(&scene)), camera, settings);
-                drop(scene);
                 Worker {
                     job,
+                    scene,
+                    selection: None,
+                    outline: None,
+                    picked: None,
+                    picks: 0,
+                    last_pass_seconds: 0.0,
                     requests: rx,
                     generation: generation_,
                     published: published_,
@@ -150,6 +160,14 @@ impl Drop for RenderThread {
 
 struct Worker {
     job: ProgressiveRender,
+    /// The scene as described, to tell what an edit changed.
+    scene: Scene,
+    selection: Option<usize>,
+    /// The selection's outline for the current view; None when it must be found again.
+    outline: Option<Arc<Vec<bool>>>,
+    picked: Option<usize>,
+    picks: u64,
+    last_pass_seconds: f64,
     requests: Receiver<Request>,
     generation: Arc<AtomicU64>,
     published: Arc<Mutex<Published>>,
@@ -219,20 +237,48 @@ impl Worker {
     }
 
     fn apply(&mut self, request: Request) {
+        // Whatever changes, the outline is found again for the new image.
+        self.outline = None;
+        // A selection changes no pixel: the image so far is shown again with its outline.
+        let reselect = |w: &mut Self| {
+            if w.job.passes_done() > 0 {
+                w.publish(w.last_pass_seconds);
+            }
+        };
+        match request {
+            Request::Pick { x, y } => {
+                let s = self.job.settings();
+                let rays = self.job.camera().rays(s.width, s.height);
+                self.selection = self.job.scene().object_at(&rays, x, y);
+                self.picked = self.selection;
+                self.picks += 1;
+                return reselect(self);
+            }
+            Request::Select(selection) => {
+                self.selection = selection;
+                return reselect(self);
+            }
+            _ => {}
+        }
         self.restarted = Instant::now();
         match request {
-            Request::Material { object, material } => self
-                .job
-                .edit_appearance(|a| a.set_material(object, material)),
+            Request::Pick { .. } | Request::Select(_) => {}
+            Request::Scene(scene) => {
+                let prepared = self.job.scene().updated(&self.scene, &scene);
+                self.job.set_scene(Arc::new(prepared));
+                self.scene = *scene;
+                if self
+                    .selection
+                    .is_some_and(|s| s >= self.scene.objects.len())
+                {
+                    self.selection = None;
+                }
+            }
             Request::Camera { camera, moving } => {
                 self.moving = moving;
                 self.job.set_camera(camera);
             }
             Request::Settings(settings) => self.job.set_settings(settings),
-            Request::Light { index, light } => {
-                self.job.edit_appearance(|a| a.set_light(index, light))
-            }
-            Request::Fog(fog) => self.job.edit_appearance(|a| a.set_fog(fog)),
             Request::FocusAt { x, y } => {
                 let mut camera = *self.job.camera();
                 let s = self.job.settings();
@@ -278,12 +324,15 @@ impl Worker {
             rays_per_second: stats.rays.total() as f64 / stats.seconds.max(1e-9),
             total_pixels: (full.width * full.height) as usize,
             preview: true,
+            picked: self.picked,
+            picks: self.picks,
             ..Status::default()
         };
-        self.store(rgba, full.width, full.height, status);
+        self.store(rgba, full.width, full.height, status, None);
     }
 
     fn publish(&mut self, pass_seconds: f64) {
+        self.last_pass_seconds = pass_seconds;
         let s = self.job.settings();
         let (width, height) = (s.width, s.height);
         let mut rgba = vec![0u8; (width * height * 4) as usize];
@@ -307,8 +356,18 @@ impl Worker {
             preview: false,
             focus_distance: self.job.camera().focus_distance,
             error: None,
+            picked: self.picked,
+            picks: self.picks,
         };
-        self.store(rgba, width, height, status);
+        if self.outline.is_none()
+            && let Some(object) = self.selection
+        {
+            let rays = self.job.camera().rays(width, height);
+            let covered = self.job.scene().coverage(&rays, width, height, object);
+            self.outline = Some(Arc::new(outline(&covered, width, height)));
+        }
+        let outline = self.selection.and(self.outline.clone());
+        self.store(rgba, width, height, status, outline);
     }
 
     /// Publishes the failure with the last image.
@@ -322,9 +381,17 @@ impl Worker {
         (self.wake)();
     }
 
-    fn store(&self, rgba: Vec<u8>, width: u32, height: u32, status: Status) {
+    fn store(
+        &self,
+        rgba: Vec<u8>,
+        width: u32,
+        height: u32,
+        status: Status,
+        outline: Option<Arc<Vec<bool>>>,
+    ) {
         {
             let mut p = self.published.lock().unwrap_or_else(|e| e.into_inner());
+            p.outline = outline;
             p.rgba = rgba;
             p.width = width;
             p.height = height;
@@ -333,6 +400,24 @@ impl Worker {
         }
         (self.wake)();
     }
+}
+
+/// The pixels outside a covered region and within two pixels of it (by rows and columns).
+fn outline(covered: &[bool], width: u32, height: u32) -> Vec<bool> {
+    let (w, h) = (width as i64, height as i64);
+    let at = |x: i64, y: i64| x >= 0 && y >= 0 && x < w && y < h && covered[(y * w + x) as usize];
+    let mut out = vec![false; covered.len()];
+    for y in 0..h {
+        for x in 0..w {
+            if at(x, y) {
+                continue;
+            }
+            let near =
+                (-2..=2i64).any(|d| at(x + d, y) || at(x, y + d) || at(x + d.signum(), y + d));
+            out[(y * w + x) as usize] = near;
+        }
+    }
+    out
 }
 
 /// The text a panic was raised with.

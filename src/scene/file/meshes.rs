@@ -81,7 +81,7 @@ impl Validator<'_> {
         images: &mut Images,
     ) -> Result<Vec<MeshObject>, SceneError> {
         let smooth = d.smooth.unwrap_or(true);
-        let key = (self.assets.locate(&d.path), smooth);
+        let key = (self.locate(&d.path), smooth);
         if !files.loaded.contains_key(&key) {
             let file = self.read_mesh(at, &d.path, smooth, files.triangles)?;
             files.triangles += file
@@ -148,7 +148,7 @@ impl Validator<'_> {
         smooth: bool,
         triangles: usize,
     ) -> Result<LoadedFile, SceneError> {
-        let path = self.assets.locate(rel);
+        let path = self.locate(rel);
         let text = self.read_asset_text(rel).map_err(|e| {
             self.field_error(
                 at,
@@ -185,12 +185,12 @@ impl Validator<'_> {
         file: &LoadedFile,
         images: &mut Images,
     ) -> Result<Vec<Material>, SceneError> {
-        let path = self.assets.locate(rel);
+        let path = self.locate(rel);
         let mut library: HashMap<String, Material> = HashMap::new();
         if file.parts.iter().any(|p| p.name.is_some()) {
             for (name, line) in &file.libraries {
                 let mtl_rel = beside(rel, name);
-                let mtl_path = self.assets.locate(&mtl_rel);
+                let mtl_path = self.locate(&mtl_rel);
                 let mtl_text = self
                     .read_asset_text(&mtl_rel)
                     .map_err(|e| SceneError::Asset {
@@ -238,15 +238,13 @@ impl Validator<'_> {
                 let bytes = bytes.map_err(|e| e.to_string())?;
                 String::from_utf8(bytes.to_vec()).map_err(|_| "it is not UTF-8 text".into())
             }
-            None => super::read_text_file(
-                &self.assets.locate(rel),
-                limits::MAX_MESH_FILE_BYTES,
-                "mesh file",
-            )
-            .map_err(|e| match e {
-                SceneError::Read { reason, .. } => reason,
-                other => other.to_string(),
-            }),
+            None => {
+                super::read_text_file(&self.locate(rel), limits::MAX_MESH_FILE_BYTES, "mesh file")
+                    .map_err(|e| match e {
+                        SceneError::Read { reason, .. } => reason,
+                        other => other.to_string(),
+                    })
+            }
         }
     }
 
@@ -282,9 +280,7 @@ impl Validator<'_> {
         let texture = match &m.map_kd {
             Some(name) => {
                 let rel = beside(mtl_rel, name);
-                let image = images
-                    .load(&self.assets, &rel)
-                    .map_err(|e| fail("map_Kd", e))?;
+                let image = images.load(self, &rel).map_err(|e| fail("map_Kd", e))?;
                 Texture::Image {
                     image,
                     uv: UvTransform::IDENTITY,
