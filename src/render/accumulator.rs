@@ -59,6 +59,22 @@ impl PixelSum {
     }
 }
 
+impl PixelSum {
+    /// The error estimate of `error_estimate` at any count: the mean luminance's distance
+    /// from the mean of the first power-of-two share of the subsamples (those `half` holds).
+    /// What the viewer's error heat map and convergence plot show between the powers of two;
+    /// None before two subsamples.
+    pub fn error_so_far(&self) -> Option<f32> {
+        if self.count < 2 {
+            return None;
+        }
+        // `half` was taken when the count reached the largest power of two below it.
+        let first = 1u32 << (31 - (self.count - 1).leading_zeros());
+        let n = self.count as f32;
+        Some((luminance(self.color) / n - luminance(self.half) / first as f32).abs())
+    }
+}
+
 /// Rec. 709 luminance of a linear colour.
 #[inline]
 pub fn luminance(c: Vec3) -> f32 {
@@ -129,6 +145,26 @@ pub fn to_8bit(c: Vec3) -> [u8; 3] {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// At powers of two the estimate is `error_estimate`'s; between them it compares with
+    /// the first power-of-two share.
+    #[test]
+    fn the_error_so_far_matches_the_stopping_rule_at_powers_of_two() {
+        let mut p = PixelSum::default();
+        assert_eq!(p.error_so_far(), None);
+        let samples = [0.2, 0.6, 0.4, 0.8, 0.1, 0.9, 0.5];
+        for (i, &v) in samples.iter().enumerate() {
+            p.add(Vec3::splat(v), 0);
+            let n = i + 1;
+            if n >= 2 && n.is_power_of_two() {
+                assert_eq!(p.error_so_far(), Some(p.error_estimate()));
+            }
+        }
+        // Seven subsamples: compared with the first four.
+        let mean = |s: &[f32]| s.iter().sum::<f32>() / s.len() as f32;
+        let expected = (mean(&samples) - mean(&samples[..4])).abs();
+        assert!((p.error_so_far().unwrap() - expected).abs() < 1e-6);
+    }
 
     #[test]
     fn mean_and_quantisation() {

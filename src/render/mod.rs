@@ -4,6 +4,7 @@
 
 mod accumulator;
 mod compare;
+mod heat_map;
 mod output;
 mod pass;
 mod progressive;
@@ -11,6 +12,7 @@ mod settings;
 
 pub use accumulator::{Accumulator, PixelSum, luminance, to_8bit};
 pub use compare::fraction_differing;
+pub use heat_map::{ERROR_SCALE, Legend, View, mean_error, scale_color, write_view_rgba8};
 pub use output::{
     ImageFormat, OutputError, PendingFile, remove_pending_files, write_bytes, write_png,
 };

@@ -66,7 +66,8 @@ pub enum EditError {
     /// A fog density out of range, or fog in a scene without any.
     #[error("fog: {0}")]
     Fog(String),
-    /// A material that breaks one of the file's rules for `[materials]`.
+    /// A material that breaks one of the file's rules for `[materials]`, or a move that
+    /// would take an object out of bounds (`field` says which).
     #[error("{object}: `{field}` {message}")]
     Material {
         /// The object's name.
@@ -393,6 +394,27 @@ impl Scene {
 }
 
 impl Scene {
+    /// Moves object `object` by `offset` (its shape, whatever its kind; a mesh with its
+    /// transform), if it stays within `MAX_COORDINATE` of the origin.
+    pub fn move_object(&mut self, object: usize, offset: Vec3) -> Result<(), EditError> {
+        let o = self
+            .objects
+            .get_mut(object)
+            .ok_or(EditError::NoSuchObject(object))?;
+        let moved = o.shape.transformed(1.0, offset);
+        let b = moved.bounds();
+        let reach = b.min.abs().max(b.max.abs()).max_element();
+        if !(offset.is_finite() && reach.is_finite() && reach as f64 <= MAX_COORDINATE) {
+            return Err(EditError::Material {
+                object: o.name.clone(),
+                field: "translate",
+                message: format!("{offset} would take it beyond {MAX_COORDINATE:e}"),
+            });
+        }
+        o.shape = moved;
+        Ok(())
+    }
+
     /// Light `index`, to edit.
     fn light_mut(&mut self, index: usize) -> Result<&mut crate::appearance::Light, EditError> {
         self.lights.get_mut(index).ok_or(EditError::Light {

@@ -49,11 +49,9 @@ pub fn saved_text(
     let before = &loaded.scene;
     let same_parts = before.objects.len() == edited.objects.len()
         && before.lights.len() == edited.lights.len()
-        && before
-            .objects
-            .iter()
-            .zip(&edited.objects)
-            .all(|(a, b)| a.name == b.name && a.shape == b.shape);
+        && before.objects.iter().zip(&edited.objects).all(|(a, b)| {
+            a.name == b.name && std::mem::discriminant(&a.shape) == std::mem::discriminant(&b.shape)
+        });
     if !same_parts || loaded.origins.len() != before.objects.len() {
         return Err(SaveError::Mismatch);
     }
@@ -75,6 +73,7 @@ pub fn saved_text(
         }
     }
     write_materials(&mut doc, loaded, edited, &mut skipped)?;
+    write_moves(&mut doc, loaded, edited, &mut skipped)?;
     Ok(SavedText {
         text: doc.to_string(),
         skipped,
@@ -299,6 +298,72 @@ fn write_materials(
                 Value::from(new_name.as_str()),
             );
         }
+    }
+    Ok(())
+}
+
+/// Objects moved in the viewer: each entry's `translate` grows by the move. The parts of
+/// one mesh entry (one per MTL material) move together or not at all.
+fn write_moves(
+    doc: &mut DocumentMut,
+    loaded: &LoadedScene,
+    edited: &Scene,
+    skipped: &mut Vec<String>,
+) -> Result<(), SaveError> {
+    let before = &loaded.scene;
+    let mut entries: BTreeMap<(&str, usize), Vec<usize>> = BTreeMap::new();
+    for (i, o) in loaded.origins.iter().enumerate() {
+        entries.entry((o.table, o.index)).or_default().push(i);
+    }
+    for ((table, index), objects) in entries {
+        let offsets: Vec<Vec3> = objects
+            .iter()
+            .map(|&i| edited.objects[i].shape.origin() - before.objects[i].shape.origin())
+            .collect();
+        if objects
+            .iter()
+            .all(|&i| edited.objects[i].shape == before.objects[i].shape)
+        {
+            continue;
+        }
+        let offset = offsets[0];
+        let together = offsets.iter().all(|o| {
+            (*o - offset).abs().max_element() <= 1e-6 * offset.abs().max_element().max(1.0)
+        });
+        if !together {
+            skipped.push(format!(
+                "{table}[{index}]: its parts were moved apart, which one entry cannot say"
+            ));
+            continue;
+        }
+        let entry = array_entry(doc, table, index)?;
+        let old = entry
+            .get("translate")
+            .and_then(Item::as_value)
+            .and_then(Value::as_array)
+            .map(|a| {
+                let n: Vec<f64> = a
+                    .iter()
+                    .filter_map(|v| v.as_float().or_else(|| v.as_integer().map(|i| i as f64)))
+                    .collect();
+                if n.len() == 3 {
+                    [n[0], n[1], n[2]]
+                } else {
+                    [0.0; 3]
+                }
+            })
+            .unwrap_or([0.0; 3]);
+        let shortest = |v: f32| format!("{v:?}").parse::<f64>().unwrap_or(v as f64);
+        let new = [
+            old[0] + shortest(offset.x),
+            old[1] + shortest(offset.y),
+            old[2] + shortest(offset.z),
+        ];
+        set(
+            entry,
+            "translate",
+            Value::Array(new.into_iter().map(Value::from).collect::<Array>()),
+        );
     }
     Ok(())
 }
@@ -669,6 +734,46 @@ material = \"mirror\"
         std::fs::write(&path, &saved.text).unwrap();
         let back = load_scene_file(&path).result.unwrap().scene;
         assert_eq!(back, edited, "{}", saved.text);
+    }
+
+    /// A moved object gets a `translate` (or a larger one), and reads back where it was
+    /// moved to.
+    #[test]
+    fn moved_objects_are_saved_as_translations() {
+        let (_dir, path, loaded) = load(SCENE);
+        let mut edited = loaded.scene.clone();
+        edited.move_object(0, Vec3::new(0.5, 0.0, -1.0)).unwrap();
+        edited.move_object(2, Vec3::new(0.0, 2.0, 0.0)).unwrap();
+        edited.move_object(2, Vec3::new(0.0, 0.25, 0.0)).unwrap();
+        let saved = saved_text(&loaded, &edited, &loaded.scene.camera).unwrap();
+        assert!(
+            saved.text.contains("translate = [0.5, 0.0, -1.0]"),
+            "{}",
+            saved.text
+        );
+        assert!(
+            saved.text.contains("translate = [0.0, 2.25, 0.0]"),
+            "{}",
+            saved.text
+        );
+        std::fs::write(&path, &saved.text).unwrap();
+        let back = load_scene_file(&path).result.unwrap().scene;
+        for i in [0, 1, 2] {
+            let (a, b) = (
+                back.objects[i].shape.bounds(),
+                edited.objects[i].shape.bounds(),
+            );
+            assert!((a.min - b.min).abs().max_element() < 1e-6, "{i}");
+            assert!((a.max - b.max).abs().max_element() < 1e-6, "{i}");
+        }
+        // Saved again, the translation grows.
+        let loaded = load_scene_file(&path).result.unwrap();
+        let mut again = loaded.scene.clone();
+        again.move_object(0, Vec3::new(0.5, 0.0, 0.0)).unwrap();
+        let text = saved_text(&loaded, &again, &loaded.scene.camera)
+            .unwrap()
+            .text;
+        assert!(text.contains("translate = [1.0, 0.0, -1.0]"), "{text}");
     }
 
     /// A light's position is written with the fewest digits that read back exactly.

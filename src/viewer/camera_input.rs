@@ -119,6 +119,24 @@ impl CameraInput {
         camera.pitch = (camera.pitch - dy * DEGREES_PER_PIXEL).clamp(-MAX_PITCH, MAX_PITCH);
     }
 
+    /// A drag in orbit mode: the camera swings about `target` at the same distance (turned
+    /// as `drag` turns it) and looks at it.
+    pub fn orbit(camera: &mut Camera, target: glam::Vec3, dx: f32, dy: f32) {
+        let distance = (camera.eye - target).length();
+        if !(distance.is_finite() && distance > 0.0) {
+            return Self::drag(camera, dx, dy);
+        }
+        // Face the target first, then turn.
+        if let Some(facing) =
+            Camera::looking_along_up(camera.eye, target - camera.eye, camera.up, camera.vfov)
+        {
+            camera.yaw = facing.yaw;
+            camera.pitch = facing.pitch;
+        }
+        Self::drag(camera, dx, dy);
+        camera.eye = target - camera.forward() * distance;
+    }
+
     /// Zooms by `lines` scroll notches (positive: in, narrowing the field of view).
     pub fn scroll(camera: &mut Camera, lines: f32) {
         camera.vfov = (camera.vfov * 0.9f32.powf(lines)).clamp(*VFOV.start(), *VFOV.end());
@@ -202,6 +220,31 @@ mod tests {
         assert_eq!(c.yaw, 10.0);
         CameraInput::drag(&mut c, 0.0, -10_000.0);
         assert_eq!(c.pitch, MAX_PITCH);
+    }
+
+    /// Orbiting keeps the distance to the target and looks at it; a quarter turn of drag
+    /// moves the camera a quarter of the way round.
+    #[test]
+    fn orbit_swings_about_the_target() {
+        let mut c = cam();
+        c.eye = Vec3::new(0.0, 0.0, 10.0);
+        let target = Vec3::new(0.0, 0.0, 0.0);
+        // 90° of yaw: DEGREES_PER_PIXEL is 0.2°.
+        CameraInput::orbit(&mut c, target, 450.0, 0.0);
+        assert!((c.eye - target).length() - 10.0 < 1e-4);
+        assert!(
+            (c.eye - Vec3::new(-10.0, 0.0, 0.0)).length() < 1e-3,
+            "{}",
+            c.eye
+        );
+        assert!((c.forward() - (target - c.eye).normalize()).length() < 1e-5);
+        CameraInput::orbit(&mut c, target, 0.0, -100.0);
+        assert!(((c.eye - target).length() - 10.0).abs() < 1e-4);
+        assert!(c.eye.y < -1.0, "dragging up looks up from below: {}", c.eye);
+        // A camera on the target turns in place.
+        let mut on = cam();
+        CameraInput::orbit(&mut on, Vec3::ZERO, 50.0, 0.0);
+        assert_eq!((on.eye, on.yaw), (Vec3::ZERO, 10.0));
     }
 
     #[test]

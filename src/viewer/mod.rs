@@ -371,6 +371,27 @@ impl App {
             eprintln!("prism: error: the render failed: {e}");
             self.render_error = Some(e.clone());
         }
+        // The convergence plot follows the accumulation, and starts again with it.
+        if !status.preview && status.passes_done > 0 {
+            let restarted = self
+                .panel
+                .convergence
+                .last()
+                .is_some_and(|p| status.seconds < p[0] || status.samples_per_pixel < p[1]);
+            if restarted {
+                self.panel.convergence.clear();
+            }
+            let point = [
+                status.seconds,
+                status.samples_per_pixel,
+                status.mean_error.unwrap_or(0.0),
+            ];
+            if self.panel.convergence.last() != Some(&point) {
+                self.panel.convergence.push(point);
+            }
+        } else if status.preview {
+            self.panel.convergence.clear();
+        }
         // A pick's answer: the selection, named in the panel.
         if status.picks != self.seen_picks {
             self.seen_picks = status.picks;
@@ -406,6 +427,9 @@ impl App {
         let Some(g) = &self.gfx else { return };
         if let Some(selection) = changes.select {
             g.render.send(Request::Select(selection));
+        }
+        if let Some(view) = changes.view {
+            g.render.send(Request::View(view));
         }
         if changes.camera {
             self.send_camera(false);
@@ -741,11 +765,30 @@ impl App {
                 *moved += dx.abs() + dy.abs();
             }
             if dx != 0.0 || dy != 0.0 {
-                CameraInput::drag(&mut self.panel.camera, dx as f32, dy as f32);
+                let (dx, dy) = (dx as f32, dy as f32);
+                match self.orbit_target() {
+                    Some(target) => CameraInput::orbit(&mut self.panel.camera, target, dx, dy),
+                    None => CameraInput::drag(&mut self.panel.camera, dx, dy),
+                }
                 self.send_camera(true);
             }
         }
         self.cursor = Some(position);
+    }
+
+    /// What a drag orbits: the selected object's centre, in orbit mode.
+    fn orbit_target(&self) -> Option<glam::Vec3> {
+        let object = self.panel.scene.objects.get(self.panel.selected?)?;
+        if !self.panel.orbit {
+            return None;
+        }
+        let b = object.shape.bounds();
+        let center = (b.min + b.max) * 0.5;
+        Some(if center.is_finite() {
+            center
+        } else {
+            object.shape.origin()
+        })
     }
 
     /// A press on the image (`on_image`, and not taken by the panel) starts a drag; the

@@ -10,6 +10,7 @@ use glam::{DVec3, Vec3};
 use prism::appearance::{Background, Falloff, LightKind, Texture};
 use prism::camera::Camera;
 use prism::limits::{MAX_COORDINATE, MAX_PHONG_FACTOR, MAX_RADIANCE, MAX_SHININESS, MIN_LENGTH};
+use prism::render::{Legend, View};
 use prism::scene::check_camera;
 use prism::scene::{EditError, Scene};
 use std::ops::RangeInclusive;
@@ -54,6 +55,8 @@ pub struct Changes {
     pub reload: bool,
     pub undo: bool,
     pub redo: bool,
+    /// Show the image or a heat map.
+    pub view: Option<View>,
 }
 
 /// The file the viewer shows, as the panel reports it.
@@ -89,6 +92,15 @@ pub struct PanelState {
     pub file: FileStatus,
     /// The path typed into the File section, to open or save as.
     path_entry: String,
+    /// What the image area shows.
+    pub view: View,
+    /// The accumulation's course since it last restarted: seconds, samples per pixel and
+    /// mean error estimate after each pass.
+    pub convergence: Vec<[f64; 3]>,
+    /// Whether the plot's x axis is samples per pixel (else seconds).
+    plot_by_samples: bool,
+    /// Whether a drag orbits the selection (else it turns the camera where it stands).
+    pub orbit: bool,
 }
 
 impl PanelState {
@@ -106,6 +118,10 @@ impl PanelState {
             selected: None,
             file: FileStatus::default(),
             path_entry: String::new(),
+            view: View::Image,
+            convergence: Vec::new(),
+            plot_by_samples: false,
+            orbit: false,
         }
     }
 
@@ -163,6 +179,10 @@ impl PanelState {
                 .show(ui, |ui| self.scene_settings(ui, &mut changes));
             ui.separator();
             self.sampling(ui, &mut changes);
+            ui.separator();
+            egui::CollapsingHeader::new(RichText::new("Convergence").strong())
+                .default_open(true)
+                .show(ui, |ui| self.convergence(ui, status, &mut changes));
             ui.separator();
             self.camera_controls(ui, &mut changes);
             ui.separator();
@@ -276,6 +296,16 @@ impl PanelState {
             return;
         };
         ui.label(RichText::new(format!("Selected: {}", self.scene.objects[i].name)).strong());
+        // Where it is (its own origin, in world coordinates): a change moves it.
+        let origin = self.scene.origin;
+        let at = self.scene.objects[i].shape.origin();
+        let mut world = origin + at.as_dvec3();
+        if position_row(ui, "at", &mut world) {
+            let offset = (world - origin).as_vec3() - at;
+            self.edit(changes, format!("object {i} move"), |s| {
+                s.move_object(i, offset)
+            });
+        }
         let mut m = self.scene.objects[i].material.clone();
         let before = m.clone();
         let mut field = "";
@@ -506,6 +536,53 @@ impl PanelState {
         }
     }
 
+    /// The view switch, the heat map's legend, and the plot of the error estimate.
+    fn convergence(&mut self, ui: &mut egui::Ui, status: &Status, changes: &mut Changes) {
+        ui.horizontal(|ui| {
+            for (view, name) in [
+                (View::Image, "image"),
+                (View::Samples, "samples"),
+                (View::Error, "error"),
+            ] {
+                if ui.radio_value(&mut self.view, view, name).changed() {
+                    changes.view = Some(view);
+                }
+            }
+        });
+        if let Some(legend) = status.legend {
+            legend_bar(ui, &legend, self.view);
+        }
+        ui.horizontal(|ui| {
+            ui.label("error against");
+            ui.radio_value(&mut self.plot_by_samples, false, "time");
+            ui.radio_value(&mut self.plot_by_samples, true, "samples");
+        });
+        let x = if self.plot_by_samples { 1 } else { 0 };
+        let points: Vec<[f64; 2]> = self
+            .convergence
+            .iter()
+            .filter(|p| p[2] > 0.0)
+            .map(|p| [p[x], p[2].log10()])
+            .collect();
+        egui_plot::Plot::new("convergence")
+            .height(110.0)
+            .allow_zoom(false)
+            .allow_drag(false)
+            .allow_scroll(false)
+            .x_axis_label(if self.plot_by_samples {
+                "samples per pixel"
+            } else {
+                "seconds"
+            })
+            .y_axis_formatter(|mark, _| format!("1e{:.0}", mark.value))
+            .show(ui, |plot| {
+                plot.line(egui_plot::Line::new("mean error estimate", points));
+            });
+        if let Some(e) = status.mean_error {
+            ui.small(format!("mean error estimate {e:.2e} (luminance)"));
+        }
+    }
+
     fn sampling(&mut self, ui: &mut egui::Ui, changes: &mut Changes) {
         ui.label(RichText::new("Anti-aliasing").strong());
         let aa = ui.add(
@@ -594,6 +671,10 @@ impl PanelState {
         if c.aperture > 0.0 {
             ui.small("Click the image to focus on what is there.");
         }
+        ui.add_enabled(
+            self.selected.is_some(),
+            egui::Checkbox::new(&mut self.orbit, "drag orbits the selection"),
+        );
         let step_speed = self.step * 0.01;
         ui.add(
             DragValue::new(&mut self.step)
@@ -658,6 +739,36 @@ fn color_row(
         changed
     })
     .inner
+}
+
+/// The heat map's colour scale with the values at its ends.
+fn legend_bar(ui: &mut egui::Ui, legend: &Legend, view: View) {
+    let (rect, _) = ui.allocate_exact_size(egui::vec2(200.0, 12.0), egui::Sense::hover());
+    let steps = 50;
+    for i in 0..steps {
+        let t = i as f32 / (steps - 1) as f32;
+        let [r, g, b] = prism::render::scale_color(t);
+        let x0 = rect.left() + rect.width() * i as f32 / steps as f32;
+        let x1 = rect.left() + rect.width() * (i + 1) as f32 / steps as f32;
+        let cell =
+            egui::Rect::from_min_max(egui::pos2(x0, rect.top()), egui::pos2(x1, rect.bottom()));
+        ui.painter()
+            .rect_filled(cell, 0.0, egui::Color32::from_rgb(r, g, b));
+    }
+    let text = match view {
+        View::Samples => format!("{} to {} subsamples per pixel", legend.low, legend.high),
+        View::Error | View::Image => format!(
+            "error {:.0e} to {:.0e}{} (grey: not known yet)",
+            legend.low,
+            legend.high,
+            if legend.logarithmic {
+                ", log scale"
+            } else {
+                ""
+            }
+        ),
+    };
+    ui.small(text);
 }
 
 /// A position in world coordinates; true when it changed.

@@ -4,7 +4,7 @@
 //! never on the UI thread, and an appearance edit changes a table in place.
 
 use prism::camera::Camera;
-use prism::render::{PassOutcome, ProgressiveRender, RenderSettings};
+use prism::render::{Legend, PassOutcome, ProgressiveRender, RenderSettings, View};
 use prism::scene::{PreparedScene, Scene};
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::mpsc::{Receiver, Sender, TryRecvError, channel};
@@ -39,6 +39,8 @@ pub enum Request {
     },
     /// Select this object (from the panel's list), or none.
     Select(Option<usize>),
+    /// Show the image, or a heat map of the samples or the error estimates.
+    View(View),
 }
 
 /// What the render thread reports alongside each image.
@@ -65,6 +67,10 @@ pub struct Status {
     /// answered, so that the UI sees each answer once.
     pub picked: Option<usize>,
     pub picks: u64,
+    /// What the heat map shown stands for (None: the image is shown).
+    pub legend: Option<Legend>,
+    /// The mean error estimate over the pixels that have one: the convergence plot's.
+    pub mean_error: Option<f64>,
 }
 
 /// The latest published image, as RGBA8 rows.
@@ -115,6 +121,8 @@ impl RenderThread {
                     picked: None,
                     picks: 0,
                     last_pass_seconds: 0.0,
+                    last_seconds: 0.0,
+                    view: View::Image,
                     requests: rx,
                     generation: generation_,
                     published: published_,
@@ -168,6 +176,9 @@ struct Worker {
     picked: Option<usize>,
     picks: u64,
     last_pass_seconds: f64,
+    /// Seconds from the restart to the end of the last pass.
+    last_seconds: f64,
+    view: View,
     requests: Receiver<Request>,
     generation: Arc<AtomicU64>,
     published: Arc<Mutex<Published>>,
@@ -217,7 +228,7 @@ impl Worker {
                     }
                     match self.job.step(&cancelled) {
                         PassOutcome::Finished(stats) => {
-                            self.publish(stats.seconds);
+                            self.publish(Some(stats.seconds));
                             false
                         }
                         PassOutcome::Cancelled => false,
@@ -240,9 +251,9 @@ impl Worker {
         // Whatever changes, the outline is found again for the new image.
         self.outline = None;
         // A selection changes no pixel: the image so far is shown again with its outline.
-        let reselect = |w: &mut Self| {
+        let republish = |w: &mut Self| {
             if w.job.passes_done() > 0 {
-                w.publish(w.last_pass_seconds);
+                w.publish(None);
             }
         };
         match request {
@@ -252,17 +263,21 @@ impl Worker {
                 self.selection = self.job.scene().object_at(&rays, x, y);
                 self.picked = self.selection;
                 self.picks += 1;
-                return reselect(self);
+                return republish(self);
             }
             Request::Select(selection) => {
                 self.selection = selection;
-                return reselect(self);
+                return republish(self);
+            }
+            Request::View(view) => {
+                self.view = view;
+                return republish(self);
             }
             _ => {}
         }
         self.restarted = Instant::now();
         match request {
-            Request::Pick { .. } | Request::Select(_) => {}
+            Request::Pick { .. } | Request::Select(_) | Request::View(_) => {}
             Request::Scene(scene) => {
                 let prepared = self.job.scene().updated(&self.scene, &scene);
                 self.job.set_scene(Arc::new(prepared));
@@ -331,12 +346,18 @@ impl Worker {
         self.store(rgba, full.width, full.height, status, None);
     }
 
-    fn publish(&mut self, pass_seconds: f64) {
-        self.last_pass_seconds = pass_seconds;
+    /// Publishes the image so far: after a pass that took `pass_seconds`, or again (None)
+    /// in another view or with another selection, with the times of the last pass.
+    fn publish(&mut self, pass_seconds: Option<f64>) {
+        if let Some(s) = pass_seconds {
+            self.last_pass_seconds = s;
+            self.last_seconds = self.restarted.elapsed().as_secs_f64();
+        }
+        let pass_seconds = self.last_pass_seconds;
         let s = self.job.settings();
         let (width, height) = (s.width, s.height);
         let mut rgba = vec![0u8; (width * height * 4) as usize];
-        self.job.accumulator().write_rgba8(&mut rgba);
+        let legend = prism::render::write_view_rgba8(self.job.accumulator(), self.view, &mut rgba);
         let rays = self.job.rays_traced();
         let converged = self.job.is_converged();
         let status = Status {
@@ -345,7 +366,7 @@ impl Worker {
             samples_per_pixel: self.job.samples_per_pixel(),
             ms_per_pass: pass_seconds * 1e3,
             rays_per_second: rays.total() as f64 / self.job.seconds().max(1e-9),
-            seconds: self.restarted.elapsed().as_secs_f64(),
+            seconds: self.last_seconds,
             converged,
             active_pixels: if converged {
                 0
@@ -358,6 +379,8 @@ impl Worker {
             error: None,
             picked: self.picked,
             picks: self.picks,
+            legend,
+            mean_error: prism::render::mean_error(self.job.accumulator()),
         };
         if self.outline.is_none()
             && let Some(object) = self.selection

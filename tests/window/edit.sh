@@ -39,7 +39,7 @@ wait_for "selected left" 1 30
 import -window root "$work/selected.png"
 
 # Its colour's green: a click on the number turns it into a text field.
-xdotool mousemove --window "$window" 182 243
+xdotool mousemove --window "$window" 182 264
 sleep 0.3
 xdotool click 1
 sleep 0.3
