@@ -62,6 +62,10 @@ pub struct ViewArgs {
     /// Where screenshots are saved (default: the working directory).
     #[arg(long, value_name = "DIR")]
     pub screenshot_dir: Option<PathBuf>,
+    /// Log each frame's time and each change's latency to its first image on stderr
+    /// ("prism-timing:" lines, read by tests/window/responsiveness.sh).
+    #[arg(long)]
+    pub log_timing: bool,
 }
 
 pub fn run(args: Args) -> Result<()> {
@@ -129,6 +133,7 @@ fn view(args: ViewArgs) -> Result<()> {
         start,
         settings,
         screenshot_dir: args.screenshot_dir.unwrap_or_else(|| PathBuf::from(".")),
+        log_timing: args.log_timing,
     })
 }
 

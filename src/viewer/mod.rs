@@ -10,6 +10,7 @@ mod panel;
 mod recent;
 mod render_thread;
 mod screenshot;
+mod timing;
 mod watch;
 
 use anyhow::{Context, Result, anyhow};
@@ -68,6 +69,8 @@ pub struct Launch {
     pub settings: RenderSettings,
     /// Where screenshots are saved.
     pub screenshot_dir: PathBuf,
+    /// Log frame times and change latencies (`timing.rs`).
+    pub log_timing: bool,
 }
 
 /// Opens the window and runs until it closes.
@@ -76,6 +79,7 @@ pub fn run(launch: Launch) -> Result<()> {
         start,
         settings: mut probe,
         screenshot_dir,
+        log_timing,
     } = launch;
     let aa = probe.aa;
     let window_width = probe.width as u64 + PANEL_WIDTH.ceil() as u64;
@@ -166,6 +170,7 @@ pub fn run(launch: Launch) -> Result<()> {
         history: History::new(),
         recent,
         seen_picks: 0,
+        timing: log_timing.then(timing::Timing::new),
         initial_image: (probe.width, probe.height),
         gfx: None,
         error: None,
@@ -221,6 +226,7 @@ struct App {
     recent: Vec<PathBuf>,
     /// How many picks the render thread had answered when last looked at.
     seen_picks: u64,
+    timing: Option<timing::Timing>,
     initial_image: (u32, u32),
     gfx: Option<Gfx>,
     error: Option<anyhow::Error>,
@@ -344,6 +350,9 @@ impl App {
             output.pixels_per_point,
             output.textures_delta,
         )?;
+        if let Some(t) = &mut self.timing {
+            t.frame(self.status.generation, self.status.preview);
+        }
         let repaint_now = output
             .viewport_output
             .get(&egui::ViewportId::ROOT)
@@ -436,7 +445,10 @@ impl App {
         }
         if changes.settings {
             let (iw, ih) = g.image_size();
-            g.render.send(Request::Settings(self.settings(iw, ih)));
+            let generation = g.render.send(Request::Settings(self.settings(iw, ih)));
+            if let Some(t) = &mut self.timing {
+                t.sent(generation, "settings");
+            }
         }
         if changes.screenshot {
             self.screenshot();
@@ -462,10 +474,14 @@ impl App {
     }
 
     /// The panel's scene to the render thread (which rebuilds only what changed).
-    fn send_scene(&self) {
+    fn send_scene(&mut self) {
         if let Some(g) = &self.gfx {
-            g.render
+            let generation = g
+                .render
                 .send(Request::Scene(Box::new(self.panel.scene.clone())));
+            if let Some(t) = &mut self.timing {
+                t.sent(generation, "edit");
+            }
         }
     }
 

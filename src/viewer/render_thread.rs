@@ -67,6 +67,8 @@ pub struct Status {
     /// answered, so that the UI sees each answer once.
     pub picked: Option<usize>,
     pub picks: u64,
+    /// The generation of the requests this image reflects (see `RenderThread::send`).
+    pub generation: u64,
     /// What the heat map shown stands for (None: the image is shown).
     pub legend: Option<Legend>,
     /// The mean error estimate over the pixels that have one: the convergence plot's.
@@ -121,6 +123,8 @@ impl RenderThread {
                     picked: None,
                     picks: 0,
                     last_pass_seconds: 0.0,
+                    pass_generation: 0,
+                    preview_first: false,
                     last_seconds: 0.0,
                     view: View::Image,
                     requests: rx,
@@ -141,13 +145,15 @@ impl RenderThread {
         }
     }
 
-    /// Sends a change; the pass in flight is abandoned.
-    pub fn send(&self, request: Request) {
-        self.generation.fetch_add(1, Ordering::SeqCst);
+    /// Sends a change; the pass in flight is abandoned. Returns the change's generation:
+    /// an image published with `Status::generation` at or past it shows the change.
+    pub fn send(&self, request: Request) -> u64 {
+        let generation = self.generation.fetch_add(1, Ordering::SeqCst) + 1;
         if let Some(tx) = &self.requests {
             // The worker only stops when we drop the sender, so this cannot fail first.
             let _ = tx.send(request);
         }
+        generation
     }
 
     pub fn published(&self) -> MutexGuard<'_, Published> {
@@ -176,6 +182,11 @@ struct Worker {
     picked: Option<usize>,
     picks: u64,
     last_pass_seconds: f64,
+    /// The generation the pass being traced started at.
+    pass_generation: u64,
+    /// A change was applied: show a coarse preview before the first full pass, so that the
+    /// change is seen at once however large the image.
+    preview_first: bool,
     /// Seconds from the restart to the end of the last pass.
     last_seconds: f64,
     view: View,
@@ -189,7 +200,13 @@ struct Worker {
 
 impl Worker {
     fn run(mut self) {
-        let pool = match prism::render::thread_pool(None) {
+        lower_priority();
+        let pool = rayon::ThreadPoolBuilder::new()
+            .stack_size(prism::limits::RENDER_STACK_BYTES)
+            .thread_name(|i| format!("prism-worker-{i}"))
+            .start_handler(|_| lower_priority())
+            .build();
+        let pool = match pool {
             Ok(pool) => pool,
             Err(e) => return self.fail(format!("cannot start the worker threads: {e}")),
         };
@@ -215,6 +232,7 @@ impl Worker {
                 }
             }
             let generation = self.generation.load(Ordering::SeqCst);
+            self.pass_generation = generation;
             let counter = self.generation.clone();
             let cancelled = move || counter.load(Ordering::SeqCst) != generation;
             // A panic in the tracer is a bug: report it and wait for a change, rather
@@ -225,6 +243,10 @@ impl Worker {
                     if self.moving {
                         self.preview(&cancelled);
                         return true;
+                    }
+                    if std::mem::take(&mut self.preview_first) && self.job.passes_done() == 0 {
+                        self.preview(&cancelled);
+                        return false;
                     }
                     match self.job.step(&cancelled) {
                         PassOutcome::Finished(stats) => {
@@ -252,6 +274,7 @@ impl Worker {
         self.outline = None;
         // A selection changes no pixel: the image so far is shown again with its outline.
         let republish = |w: &mut Self| {
+            w.pass_generation = w.generation.load(Ordering::SeqCst);
             if w.job.passes_done() > 0 {
                 w.publish(None);
             }
@@ -276,6 +299,7 @@ impl Worker {
             _ => {}
         }
         self.restarted = Instant::now();
+        self.preview_first = true;
         match request {
             Request::Pick { .. } | Request::Select(_) | Request::View(_) => {}
             Request::Scene(scene) => {
@@ -341,6 +365,7 @@ impl Worker {
             preview: true,
             picked: self.picked,
             picks: self.picks,
+            generation: self.pass_generation,
             ..Status::default()
         };
         self.store(rgba, full.width, full.height, status, None);
@@ -379,6 +404,7 @@ impl Worker {
             error: None,
             picked: self.picked,
             picks: self.picks,
+            generation: self.pass_generation,
             legend,
             mean_error: prism::render::mean_error(self.job.accumulator()),
         };
@@ -441,6 +467,19 @@ fn outline(covered: &[bool], width: u32, height: u32) -> Vec<bool> {
         }
     }
     out
+}
+
+/// Makes the calling thread yield to the window's: tracing takes every core, and the UI
+/// thread, drawing the panel and the newest image, must still get its turn at once (the
+/// responsiveness targets of benches/responsiveness.sh). Nice 10 on Linux; elsewhere a
+/// no-op.
+fn lower_priority() {
+    #[cfg(target_os = "linux")]
+    // SAFETY: setpriority only reads its arguments; gettid names the calling thread.
+    unsafe {
+        let tid = libc::syscall(libc::SYS_gettid) as libc::id_t;
+        libc::setpriority(libc::PRIO_PROCESS, tid, 10);
+    }
 }
 
 /// The text a panic was raised with.
