@@ -4,7 +4,7 @@
 //! closes the window (with the keyboard focus in the panel too) and ends the render thread.
 //! tests/window/panic.sh checks that a panic in the render thread is shown and reported, and
 //! tests/window/focus.sh that a click focuses the lens, and tests/window/edit.sh picking,
-//! editing, saving and reloading.
+//! editing, saving and reloading, and tests/window/broken_start.sh a scene that fails at start.
 //!
 //! Needs xvfb-run, xdotool and ImageMagick (`.ci/run` installs them). Without them the test
 //! says so and passes, unless PRISM_REQUIRE_WINDOW_TEST is set, as it is in CI.
@@ -57,6 +57,19 @@ fn under_xvfb(script: &str, work: &Path) -> std::process::Output {
         return run();
     }
     out
+}
+
+/// How many strongly red pixels (the panel's error text) the screenshot at `path` has in
+/// the panel's top `rows` rows.
+fn red_pixels(path: &Path, rows: u32) -> usize {
+    let screen = image::open(path).unwrap().into_rgb8();
+    (0..300)
+        .flat_map(|x| (0..rows).map(move |y| (x, y)))
+        .filter(|&(x, y)| {
+            let [r, g, b] = screen.get_pixel(x, y).0;
+            r > 150 && g < 120 && b < 120
+        })
+        .count()
 }
 
 /// `prism render ARGS` into a file in `work`, read back.
@@ -185,16 +198,7 @@ fn a_panic_in_the_render_thread_is_shown_and_reported() {
     assert!(stdout.contains("viewer exited with 1"), "{stdout}\n{log}");
     assert!(log.contains("PRISM_INJECT_PANIC"), "{log}");
     // The panel shows the failure in red: some strongly red pixels in the panel.
-    let screen = image::open(work.path().join("panic.png"))
-        .unwrap()
-        .into_rgb8();
-    let red = (0..300)
-        .flat_map(|x| (0..240).map(move |y| (x, y)))
-        .filter(|&(x, y)| {
-            let [r, g, b] = screen.get_pixel(x, y).0;
-            r > 150 && g < 120 && b < 120
-        })
-        .count();
+    let red = red_pixels(&work.path().join("panic.png"), 240);
     assert!(red > 20, "no red error text in the panel ({red} pixels)");
 }
 
@@ -403,18 +407,48 @@ fn picking_editing_saving_and_reloading_in_the_window() {
     );
     assert_eq!(differing(&shot(5), &fixed, 0), 0.0, "the fix");
     // The broken state on screen: red error text at the top of the panel.
-    let screen = image::open(work.path().join("broken.png"))
-        .unwrap()
-        .into_rgb8();
-    let red = (0..300)
-        .flat_map(|x| (0..90).map(move |y| (x, y)))
-        .filter(|&(x, y)| {
-            let p = screen.get_pixel(x, y).0;
-            p[0] > 150 && p[1] < 100 && p[2] < 100
-        })
-        .count();
+    let red = red_pixels(&work.path().join("broken.png"), 90);
     assert!(
         red > 50,
         "no error text at the top of the panel ({red} pixels)"
     );
+}
+
+/// tests/window/broken_start.sh: a scene with an error at start opens the window anyway,
+/// with the error (file, line, field) in red in the panel; fixing the file shows the scene,
+/// as `prism render` draws it.
+#[cfg(feature = "viewer")]
+#[test]
+fn a_scene_that_fails_at_start_opens_the_window_with_its_error() {
+    if !window_tools() {
+        return;
+    }
+    let work = tempfile::tempdir().unwrap();
+    let scene = work.path().join("scene.toml");
+    let good = EDIT_SCENE.replace("radius = 1  # right", "radius = 1");
+    std::fs::write(&scene, good.replacen("radius = 1\n", "radius = -1\n", 1)).unwrap();
+    let out = under_xvfb("broken_start.sh", work.path());
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let log = std::fs::read_to_string(work.path().join("viewer.log")).unwrap_or_default();
+    assert!(
+        out.status.success(),
+        "broken_start.sh failed\n{stdout}\nviewer log: {log}"
+    );
+    assert!(
+        log.contains("scene.toml:26") && log.contains("`radius` must be greater than zero"),
+        "{log}"
+    );
+    let red = red_pixels(&work.path().join("broken.png"), 90);
+    assert!(
+        red > 50,
+        "no error text at the top of the panel ({red} pixels)"
+    );
+    let taken = shots(&work.path().join("shots"));
+    assert_eq!(taken.len(), 1, "{taken:?}");
+    let shot = image::open(&taken[0]).unwrap().into_rgb8();
+    let fixed = work.path().join("fixed.toml");
+    std::fs::write(&fixed, &good).unwrap();
+    let fixed = fixed.to_string_lossy().into_owned();
+    let reference = render_headless(work.path(), &[&fixed, "--width", "320", "--height", "240"]);
+    assert_eq!(differing(&shot, &reference, 0), 0.0, "the fixed scene");
 }

@@ -163,10 +163,7 @@ pub fn check_material(m: &Material) -> Result<(), MaterialProblem> {
 impl Scene {
     /// Sets object `object`'s index of refraction, within limits.rs's range.
     pub fn set_eta(&mut self, object: usize, eta: f32) -> Result<(), EditError> {
-        let o = self
-            .objects
-            .get_mut(object)
-            .ok_or(EditError::NoSuchObject(object))?;
+        let o = self.object_mut(object)?;
         if !ETA.contains(&eta) {
             return Err(EditError::Eta {
                 object: o.name.clone(),
@@ -179,10 +176,7 @@ impl Scene {
 
     /// Sets object `object`'s transparency, from 0 to 1.
     pub fn set_transparency(&mut self, object: usize, t: f32) -> Result<(), EditError> {
-        let o = self
-            .objects
-            .get_mut(object)
-            .ok_or(EditError::NoSuchObject(object))?;
+        let o = self.object_mut(object)?;
         if !FRACTION.contains(&t) {
             return Err(EditError::Transparency {
                 object: o.name.clone(),
@@ -197,10 +191,7 @@ impl Scene {
 impl Scene {
     /// Sets object `object`'s roughness, on a material that reflects (or is Fresnel glass).
     pub fn set_roughness(&mut self, object: usize, r: f32) -> Result<(), EditError> {
-        let o = self
-            .objects
-            .get_mut(object)
-            .ok_or(EditError::NoSuchObject(object))?;
+        let o = self.object_mut(object)?;
         let reflects = o.material.reflectivity > 0.0 || o.material.fresnel;
         if !(ROUGHNESS.contains(&r) && (reflects || r == 0.0)) {
             return Err(EditError::Roughness {
@@ -214,10 +205,7 @@ impl Scene {
 
     /// Switches object `object`'s Fresnel glass on or off (on needs an eta other than 1).
     pub fn set_fresnel(&mut self, object: usize, on: bool) -> Result<(), EditError> {
-        let o = self
-            .objects
-            .get_mut(object)
-            .ok_or(EditError::NoSuchObject(object))?;
+        let o = self.object_mut(object)?;
         if on && !matches!(o.material.eta, Some(e) if e != 1.0) {
             return Err(EditError::Fresnel {
                 object: o.name.clone(),
@@ -287,10 +275,7 @@ impl Scene {
     /// Replaces object `object`'s material with `material`, if the scene file would take it
     /// ([`check_material`]).
     pub fn set_material(&mut self, object: usize, material: Material) -> Result<(), EditError> {
-        let o = self
-            .objects
-            .get_mut(object)
-            .ok_or(EditError::NoSuchObject(object))?;
+        let o = self.object_mut(object)?;
         check_material(&material).map_err(|(field, message)| EditError::Material {
             object: o.name.clone(),
             field,
@@ -397,10 +382,7 @@ impl Scene {
     /// Moves object `object` by `offset` (its shape, whatever its kind; a mesh with its
     /// transform), if it stays within `MAX_COORDINATE` of the origin.
     pub fn move_object(&mut self, object: usize, offset: Vec3) -> Result<(), EditError> {
-        let o = self
-            .objects
-            .get_mut(object)
-            .ok_or(EditError::NoSuchObject(object))?;
+        let o = self.object_mut(object)?;
         let moved = o.shape.transformed(1.0, offset);
         let b = moved.bounds();
         let reach = b.min.abs().max(b.max.abs()).max_element();
@@ -413,6 +395,13 @@ impl Scene {
         }
         o.shape = moved;
         Ok(())
+    }
+
+    /// Object `object`, to edit.
+    fn object_mut(&mut self, object: usize) -> Result<&mut super::SceneObject, EditError> {
+        self.objects
+            .get_mut(object)
+            .ok_or(EditError::NoSuchObject(object))
     }
 
     /// Light `index`, to edit.

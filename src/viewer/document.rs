@@ -50,14 +50,21 @@ impl Document {
         let (sender, wake) = (self.sender.clone(), self.wake.clone());
         let p = path.to_path_buf();
         self.watcher = None;
-        self.watcher = Some(Watcher::spawn(p.clone(), files, move |load| {
+        let watcher = Watcher::spawn(p.clone(), files, move |load| {
             let _ = sender.send(LoadMessage {
                 path: p.clone(),
                 load,
                 asked: false,
             });
             wake();
-        }));
+        });
+        match watcher {
+            Ok(w) => self.watcher = Some(w),
+            Err(e) => eprintln!(
+                "prism: error: cannot watch {} for changes (F5 reloads it): {e}",
+                path.display()
+            ),
+        }
     }
 
     /// Loads `path` on a thread of its own; the result comes as a message.

@@ -330,6 +330,7 @@ impl App {
             path: self.document.path.clone(),
             error: self.document.error.clone(),
             unsaved: self.document.unsaved(&self.panel.scene),
+            loaded: self.document.loaded.is_some(),
             can_undo: self.history.can_undo(),
             can_redo: self.history.can_redo(),
             recent: self.recent.clone(),

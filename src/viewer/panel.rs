@@ -68,6 +68,8 @@ pub struct FileStatus {
     pub error: Option<String>,
     /// Edits not yet saved.
     pub unsaved: bool,
+    /// Whether a load of the file has succeeded (what stays on screen while it is broken).
+    pub loaded: bool,
     pub can_undo: bool,
     pub can_redo: bool,
     /// Recently opened scene files, newest first.
@@ -162,8 +164,12 @@ impl PanelState {
                 ui.separator();
             }
             if let Some(e) = &self.file.error {
-                let text =
-                    format!("{e}\nThe last good scene stays on screen until the file is fixed.");
+                let then = if self.file.loaded {
+                    "The last good scene stays on screen until the file is fixed."
+                } else {
+                    "Fix the file and save it: the viewer loads it then."
+                };
+                let text = format!("{e}\n{then}");
                 ui.label(RichText::new(text).color(error_color));
                 ui.separator();
             }

@@ -8,7 +8,6 @@ use prism::scene::{SceneLoad, load_scene_file};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::thread::JoinHandle;
 use std::time::{Duration, Instant, SystemTime};
 
 /// How often the files are looked at.
@@ -75,10 +74,10 @@ impl Settle {
     }
 }
 
-/// The watching thread; dropping it stops the thread.
+/// The watching thread; dropping it stops the thread without waiting for it (it may be in
+/// the middle of a long load, which the UI must not wait for).
 pub struct Watcher {
     stop: Arc<AtomicBool>,
-    handle: Option<JoinHandle<()>>,
 }
 
 impl Watcher {
@@ -88,10 +87,10 @@ impl Watcher {
         path: PathBuf,
         files: Vec<PathBuf>,
         loaded: impl Fn(SceneLoad) + Send + 'static,
-    ) -> Self {
+    ) -> std::io::Result<Self> {
         let stop = Arc::new(AtomicBool::new(false));
         let stop_ = stop.clone();
-        let handle = std::thread::Builder::new()
+        std::thread::Builder::new()
             .name("prism-watch".into())
             .spawn(move || {
                 let mut settle = Settle::new(files);
@@ -100,24 +99,20 @@ impl Watcher {
                     if settle.poll(Instant::now()) {
                         let load = load_scene_file(&path);
                         settle = Settle::new(load.files.clone());
-                        loaded(load);
+                        // A watcher stopped during a long load reports nothing.
+                        if !stop_.load(Ordering::Relaxed) {
+                            loaded(load);
+                        }
                     }
                 }
-            })
-            .expect("the watching thread starts");
-        Self {
-            stop,
-            handle: Some(handle),
-        }
+            })?;
+        Ok(Self { stop })
     }
 }
 
 impl Drop for Watcher {
     fn drop(&mut self) {
         self.stop.store(true, Ordering::Relaxed);
-        if let Some(h) = self.handle.take() {
-            let _ = h.join();
-        }
     }
 }
 
@@ -170,7 +165,8 @@ mod tests {
         let (tx, rx) = channel();
         let _watcher = Watcher::spawn(path.clone(), first.files, move |load| {
             let _ = tx.send(load);
-        });
+        })
+        .unwrap();
         let next = || rx.recv_timeout(Duration::from_secs(5)).expect("a reload");
         // Modification times may be coarse: make each write differ in size as well.
         std::thread::sleep(Duration::from_millis(50));
