@@ -417,3 +417,47 @@ fn bad_up_vectors_are_rejected() {
         &["camera", "choose another `up`"],
     );
 }
+
+/// The statistics at the end: time by stage and peak memory on stderr, and with
+/// `--stats-json` the same figures as JSON, consistent with each other; an unwritable
+/// statistics path fails before the render.
+#[test]
+fn statistics_are_reported_and_written_as_json() {
+    let case = Case::new();
+    let scene = case.scene(GOOD);
+    let json_path = case.dir.path().join("stats.json");
+    let out = case.render(&scene, &["--stats-json", json_path.to_str().unwrap()]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("s loading,") && stderr.contains("s tracing"),
+        "{stderr}"
+    );
+    assert!(stderr.contains("peak memory: "), "{stderr}");
+    let text = std::fs::read_to_string(&json_path).unwrap();
+    let stats: serde_json::Value = serde_json::from_str(&text).unwrap();
+    assert_eq!(stats["width"], 40);
+    assert_eq!(stats["height"], 30);
+    let rays = &stats["rays"];
+    let sum = ["primary", "shadow", "secondary"]
+        .iter()
+        .map(|k| rays[k].as_u64().unwrap())
+        .sum::<u64>();
+    assert_eq!(rays["total"].as_u64(), Some(sum));
+    // 40×30 pixels at the scene's 2×2 subsamples: 4,800 primary rays.
+    assert_eq!(rays["primary"], 4800);
+    assert_eq!(stats["samples_per_pixel"], 4.0);
+    let s = &stats["seconds"];
+    let part = |k: &str| s[k].as_f64().unwrap();
+    assert!(part("load") + part("build") + part("trace") <= part("total") + 1e-6);
+    assert!(stats["peak_memory_bytes"].as_u64().unwrap_or(u64::MAX) > 1 << 20);
+
+    std::fs::remove_file(case.out()).unwrap();
+    let bad = case.dir.path().join("no-such-dir/stats.json");
+    let out = case.render(&scene, &["--stats-json", bad.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        !case.out().exists(),
+        "no image after a refused statistics path"
+    );
+}

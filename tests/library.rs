@@ -15,6 +15,9 @@ const BINARY_ONLY: &[&str] = &[
     "winit",
     "pixels",
     "egui",
+    "egui_plot",
+    "libc",
+    "serde_json",
 ];
 
 /// The names of the normal (not dev or build) dependencies of the library, with `features`.

@@ -1,6 +1,7 @@
 //! Command-line parsing and the headless commands.
 
 mod render;
+mod stats;
 
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};

@@ -1,5 +1,6 @@
 //! `prism render`: a headless render to PNG with a progress bar.
 
+use super::stats::{Rays, RenderStats, Seconds, peak_memory_bytes};
 use anyhow::{Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
 use prism::render::ImageFormat;
@@ -61,6 +62,10 @@ pub struct RenderArgs {
     /// No progress bar.
     #[arg(long, short)]
     pub quiet: bool,
+    /// Also write the statistics (time by stage, rays by kind, samples per pixel, peak
+    /// memory) to FILE as JSON.
+    #[arg(long, value_name = "FILE")]
+    pub stats_json: Option<PathBuf>,
 }
 
 #[derive(clap::ValueEnum, Clone, Copy, Debug)]
@@ -70,7 +75,9 @@ pub enum Layout {
 }
 
 pub fn run(args: RenderArgs) -> Result<()> {
+    let start = Instant::now();
     let mut scene = super::load_scene_or_seed(args.scene.as_deref())?;
+    let load_seconds = start.elapsed().as_secs_f64();
     if let Some(depth) = args.max_depth {
         scene.render.max_depth = depth;
     }
@@ -103,10 +110,16 @@ pub fn run(args: RenderArgs) -> Result<()> {
     ImageFormat::from_path(&args.out)?;
     // Claim the output file first: an unwritable path fails now, not after the render.
     let pending = PendingFile::create(&args.out)?;
+    let stats_file = match &args.stats_json {
+        Some(path) => Some(PendingFile::create(path)?),
+        None => None,
+    };
     let pool = prism::render::thread_pool(args.threads.map(usize::from))
         .context("cannot start the worker threads")?;
 
+    let build_start = Instant::now();
     let prepared = Arc::new(PreparedScene::new(&scene));
+    let build_seconds = build_start.elapsed().as_secs_f64();
     let bar = if args.quiet {
         ProgressBar::hidden()
     } else {
@@ -117,7 +130,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
             .expect("valid template")
             .progress_chars("=> "),
     );
-    let start = Instant::now();
+    let trace_start = Instant::now();
     let job = pool.install(|| {
         rayon::join(crate::fault_injection::injected_panic, || ());
         prism::render::render(prepared, scene.camera, settings, |job, stats| {
@@ -130,7 +143,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
         })
     });
     bar.finish_and_clear();
-    let wall = start.elapsed().as_secs_f64();
+    let wall = trace_start.elapsed().as_secs_f64();
     let path = pending.finish_png(&job.accumulator().to_rgb8())?;
     let rays = job.rays_traced();
     eprintln!(
@@ -148,5 +161,35 @@ pub fn run(args: RenderArgs) -> Result<()> {
         rays.shadow,
         rays.secondary,
     );
+    let stats = RenderStats {
+        scene: args
+            .scene
+            .as_ref()
+            .map_or_else(|| "seed".into(), |p| p.display().to_string()),
+        output: path.display().to_string(),
+        width: settings.width,
+        height: settings.height,
+        threads: pool.current_num_threads(),
+        seconds: Seconds {
+            load: load_seconds,
+            build: build_seconds,
+            trace: wall,
+            total: start.elapsed().as_secs_f64(),
+        },
+        samples_per_pixel: job.samples_per_pixel(),
+        passes: job.passes_done(),
+        rays: Rays {
+            primary: rays.primary,
+            shadow: rays.shadow,
+            secondary: rays.secondary,
+            total: rays.total(),
+        },
+        rays_per_second: rays.total() as f64 / wall.max(1e-9),
+        peak_memory_bytes: peak_memory_bytes(),
+    };
+    eprintln!("{}", stats.lines());
+    if let Some(file) = stats_file {
+        file.finish_bytes(stats.to_json().as_bytes())?;
+    }
     Ok(())
 }
