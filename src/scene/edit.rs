@@ -18,43 +18,9 @@ pub enum EditError {
     /// The scene has no object with this index.
     #[error("no object number {0}")]
     NoSuchObject(usize),
-    /// An eta out of range.
-    #[error("{object}: eta {value} must be a number from {} to {}", ETA.start(), ETA.end())]
-    Eta {
-        /// The object's name.
-        object: String,
-        /// The value refused.
-        value: f32,
-    },
-    #[error(
-        "{object}: transparency {value} must be a number from {} to {}",
-        FRACTION.start(),
-        FRACTION.end()
-    )]
-    /// A transparency out of range.
-    Transparency {
-        /// The object's name.
-        object: String,
-        /// The value refused.
-        value: f32,
-    },
     /// A camera that breaks a rule (the message says which).
     #[error("camera: {0}")]
     Camera(String),
-    /// A roughness out of range, or on a material that does not reflect.
-    #[error("{object}: roughness {value} must be a number from {} to {} on a reflective material", ROUGHNESS.start(), ROUGHNESS.end())]
-    Roughness {
-        /// The object's name.
-        object: String,
-        /// The value refused.
-        value: f32,
-    },
-    /// Fresnel asked of a material that does not refract.
-    #[error("{object}: Fresnel glass needs an eta other than 1")]
-    Fresnel {
-        /// The object's name.
-        object: String,
-    },
     /// A light's number or value refused (the message says which).
     #[error("lights[{light}]: {message}")]
     Light {
@@ -161,58 +127,36 @@ pub fn check_material(m: &Material) -> Result<(), MaterialProblem> {
 }
 
 impl Scene {
-    /// Sets object `object`'s index of refraction, within limits.rs's range.
+    /// Sets object `object`'s index of refraction (the material's other fields kept), by
+    /// the rules of [`Scene::set_material`].
     pub fn set_eta(&mut self, object: usize, eta: f32) -> Result<(), EditError> {
-        let o = self.object_mut(object)?;
-        if !ETA.contains(&eta) {
-            return Err(EditError::Eta {
-                object: o.name.clone(),
-                value: eta,
-            });
-        }
-        o.material.eta = Some(eta);
-        Ok(())
+        self.edit_material(object, |m| m.eta = Some(eta))
     }
 
     /// Sets object `object`'s transparency, from 0 to 1.
     pub fn set_transparency(&mut self, object: usize, t: f32) -> Result<(), EditError> {
-        let o = self.object_mut(object)?;
-        if !FRACTION.contains(&t) {
-            return Err(EditError::Transparency {
-                object: o.name.clone(),
-                value: t,
-            });
-        }
-        o.material.transparency = t;
-        Ok(())
+        self.edit_material(object, |m| m.transparency = t)
     }
-}
 
-impl Scene {
     /// Sets object `object`'s roughness, on a material that reflects (or is Fresnel glass).
     pub fn set_roughness(&mut self, object: usize, r: f32) -> Result<(), EditError> {
-        let o = self.object_mut(object)?;
-        let reflects = o.material.reflectivity > 0.0 || o.material.fresnel;
-        if !(ROUGHNESS.contains(&r) && (reflects || r == 0.0)) {
-            return Err(EditError::Roughness {
-                object: o.name.clone(),
-                value: r,
-            });
-        }
-        o.material.roughness = r;
-        Ok(())
+        self.edit_material(object, |m| m.roughness = r)
     }
 
     /// Switches object `object`'s Fresnel glass on or off (on needs an eta other than 1).
     pub fn set_fresnel(&mut self, object: usize, on: bool) -> Result<(), EditError> {
-        let o = self.object_mut(object)?;
-        if on && !matches!(o.material.eta, Some(e) if e != 1.0) {
-            return Err(EditError::Fresnel {
-                object: o.name.clone(),
-            });
-        }
-        o.material.fresnel = on;
-        Ok(())
+        self.edit_material(object, |m| m.fresnel = on)
+    }
+
+    /// Object `object`'s material changed by `change`, if the result is one the file takes.
+    fn edit_material(
+        &mut self,
+        object: usize,
+        change: impl FnOnce(&mut Material),
+    ) -> Result<(), EditError> {
+        let mut m = self.object_mut(object)?.material.clone();
+        change(&mut m);
+        self.set_material(object, m)
     }
 
     /// Resizes area light `light` about its centre to `size` (`AreaShape::size`).

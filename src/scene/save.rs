@@ -342,10 +342,7 @@ fn write_moves(
             .and_then(Item::as_value)
             .and_then(Value::as_array)
             .map(|a| {
-                let n: Vec<f64> = a
-                    .iter()
-                    .filter_map(|v| v.as_float().or_else(|| v.as_integer().map(|i| i as f64)))
-                    .collect();
+                let n: Vec<f64> = a.iter().filter_map(as_number).collect();
                 if n.len() == 3 {
                     [n[0], n[1], n[2]]
                 } else {
@@ -353,7 +350,6 @@ fn write_moves(
                 }
             })
             .unwrap_or([0.0; 3]);
-        let shortest = |v: f32| format!("{v:?}").parse::<f64>().unwrap_or(v as f64);
         let new = [
             old[0] + shortest(offset.x),
             old[1] + shortest(offset.y),
@@ -529,7 +525,6 @@ fn set(t: &mut dyn TableLike, key: &str, mut v: Value) {
 /// Whether two values are equal as the loader reads them: numbers by value, arrays element
 /// by element.
 fn same_value(a: &Value, b: &Value) -> bool {
-    let as_number = |v: &Value| v.as_float().or_else(|| v.as_integer().map(|i| i as f64));
     match (a, b) {
         (Value::Array(x), Value::Array(y)) => {
             x.len() == y.len() && x.iter().zip(y.iter()).all(|(p, q)| same_value(p, q))
@@ -541,9 +536,19 @@ fn same_value(a: &Value, b: &Value) -> bool {
     }
 }
 
+/// A number of the file, float or integer.
+fn as_number(v: &Value) -> Option<f64> {
+    v.as_float().or_else(|| v.as_integer().map(|i| i as f64))
+}
+
+/// The f64 with the fewest digits that reads back as `v`.
+fn shortest(v: f32) -> f64 {
+    format!("{v:?}").parse::<f64>().unwrap_or(v as f64)
+}
+
 /// An f32 written with the fewest digits that read back as the same f32.
 fn number(v: f32) -> Value {
-    Value::from(format!("{v:?}").parse::<f64>().unwrap_or(v as f64))
+    Value::from(shortest(v))
 }
 
 fn vector(v: Vec3) -> Value {

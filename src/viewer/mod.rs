@@ -152,11 +152,12 @@ pub fn run(launch: Launch) -> Result<()> {
             }
         }
     };
-    let recent_list = recent::list_path();
-    let mut recent = recent_list.as_deref().map(recent::read).unwrap_or_default();
-    if let (Some(path), Some(list)) = (&document.path, &recent_list) {
-        recent = recent::with_opened(&recent, path);
-        let _ = recent::write(list, &recent);
+    let mut recent = recent::list_path()
+        .as_deref()
+        .map(recent::read)
+        .unwrap_or_default();
+    if let Some(path) = &document.path {
+        recent = recent::remember(&recent, path);
     }
     let step = step_for(&scene);
     probe.width = probe.width.max(1);
@@ -554,10 +555,7 @@ impl App {
                 );
             }
             self.document.path = Some(path.clone());
-            self.recent = recent::with_opened(&self.recent, &path);
-            if let Some(list) = recent::list_path() {
-                let _ = recent::write(&list, &self.recent);
-            }
+            self.recent = recent::remember(&self.recent, &path);
             self.document.load_in_background(path);
         }
     }
@@ -627,10 +625,7 @@ impl App {
         }
         if !same_file {
             self.document.path = Some(path.clone());
-            self.recent = recent::with_opened(&self.recent, &path);
-            if let Some(list) = recent::list_path() {
-                let _ = recent::write(&list, &self.recent);
-            }
+            self.recent = recent::remember(&self.recent, &path);
         }
         let loaded = match load.result {
             Ok(loaded) => loaded,

@@ -37,6 +37,16 @@ pub fn with_opened(list: &[PathBuf], opened: &Path) -> Vec<PathBuf> {
         .collect()
 }
 
+/// `list` with `opened` first, kept for the next run where `list_path` says (a folder that
+/// cannot be written leaves the list to this run).
+pub fn remember(list: &[PathBuf], opened: &Path) -> Vec<PathBuf> {
+    let list = with_opened(list, opened);
+    if let Some(at) = list_path() {
+        let _ = write(&at, &list);
+    }
+    list
+}
+
 /// Keeps `list` at `at`, through a temporary file renamed over the old list.
 pub fn write(at: &Path, list: &[PathBuf]) -> std::io::Result<()> {
     if let Some(dir) = at.parent() {

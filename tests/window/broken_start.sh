@@ -4,13 +4,8 @@
 # window must open and show it. Photographs the screen, fixes the file, waits for the scene
 # to load and converge, takes a screenshot and quits. Leaves the log and images in WORK_DIR.
 set -euo pipefail
-prism=$1
-work=$2
-log=$work/viewer.log
 # shellcheck source=lib.sh
 . "$(dirname "$0")/lib.sh"
-mkdir -p "$work/shots"
-export XDG_CONFIG_HOME=$work/config
 scene=$work/scene.toml
 
 "$prism" view "$scene" --width 320 --height 240 --screenshot-dir "$work/shots" >"$log" 2>&1 &

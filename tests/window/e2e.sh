@@ -7,12 +7,8 @@
 # third screenshot, moves the keyboard focus into the panel with Tab, and quits with Ctrl+Q. Leaves the viewer's log and the
 # images in WORK_DIR.
 set -euo pipefail
-prism=$1
-work=$2
-log=$work/viewer.log
 # shellcheck source=lib.sh
 . "$(dirname "$0")/lib.sh"
-mkdir -p "$work/shots"
 
 "$prism" view --width 320 --height 240 --aa 2 --screenshot-dir "$work/shots" >"$log" 2>&1 &
 pid=$!

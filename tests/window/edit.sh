@@ -6,14 +6,8 @@
 # Ctrl+S, shrinks the right sphere in the file on disk, breaks the file, and fixes it. Leaves
 # the log, the screenshots and a photograph of the broken state in WORK_DIR.
 set -euo pipefail
-prism=$1
-work=$2
-log=$work/viewer.log
 # shellcheck source=lib.sh
 . "$(dirname "$0")/lib.sh"
-mkdir -p "$work/shots"
-# The list of recent files goes here, not into the user's configuration.
-export XDG_CONFIG_HOME=$work/config
 scene=$work/scene.toml
 
 "$prism" view "$scene" --width 320 --height 700 --screenshot-dir "$work/shots" >"$log" 2>&1 &

@@ -5,12 +5,8 @@
 # sphere), waits for the viewer to report the new focus and converge again, saves a second
 # screenshot, and quits. Leaves the log and the images in WORK_DIR.
 set -euo pipefail
-prism=$1
-work=$2
-log=$work/viewer.log
 # shellcheck source=lib.sh
 . "$(dirname "$0")/lib.sh"
-mkdir -p "$work/shots"
 
 "$prism" view "$work/lens.toml" --width 200 --height 200 --screenshot-dir "$work/shots" >"$log" 2>&1 &
 pid=$!

@@ -1,4 +1,11 @@
-# Shared by the window scripts (sourced after `prism`, `work` and `log` are set).
+# Shared by the window scripts, sourced first with the script's arguments: PRISM_BINARY
+# WORK_DIR. Sets `prism`, `work` and `log` (the viewer's log), and makes WORK_DIR/shots.
+prism=$1
+work=$2
+log=$work/viewer.log
+mkdir -p "$work/shots"
+# The list of recent files goes here, not into the user's configuration.
+export XDG_CONFIG_HOME=$work/config
 
 # A private runtime folder, as Wayland and Mesa want one.
 export XDG_RUNTIME_DIR=$work/xdg

@@ -3,9 +3,6 @@
 # the panel must say so, the window must stay usable, and the exit code must be 1.
 # Usage (inside xvfb-run): panic.sh PRISM_BINARY WORK_DIR
 set -euo pipefail
-prism=$1
-work=$2
-log=$work/viewer.log
 # shellcheck source=lib.sh
 . "$(dirname "$0")/lib.sh"
 
