@@ -9,6 +9,7 @@
 pub mod accel;
 pub mod appearance;
 pub mod camera;
+pub mod color;
 pub mod geometry;
 pub mod integrator;
 pub mod limits;

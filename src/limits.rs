@@ -154,3 +154,20 @@ pub const THREADS: RangeInclusive<u16> = 1..=256;
 
 /// Names from a scene file are shown in messages at most this many characters long.
 pub const MAX_NAME_CHARS: usize = 60;
+
+/// Exposure, in stops (a factor of two each), for the colour a file stores (`--exposure`,
+/// `[render] exposure`): from a millionth to a million times as bright.
+pub const EXPOSURE: RangeInclusive<f32> = -20.0..=20.0;
+
+/// JPEG quality (`--quality`): 1 (smallest) to 100 (best).
+pub const JPEG_QUALITY: RangeInclusive<u8> = 1..=100;
+
+/// The most tiles `prism stitch` assembles in one go.
+pub const MAX_TILES: usize = 1 << 16;
+
+/// The most frames an animation may have (and so one render command may render): over
+/// nine hours at 30 frames a second.
+pub const MAX_FRAMES: u32 = 1_000_000;
+
+/// The most keyframes one animation track may have.
+pub const MAX_KEYS: usize = 100_000;

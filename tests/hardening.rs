@@ -475,10 +475,10 @@ fn a_truncated_jpeg_is_refused() {
 }
 
 #[test]
-fn output_names_must_say_png() {
+fn output_names_must_name_a_format() {
     let d = Dir::new();
     let scene = d.write("scene.toml", SPHERE);
-    for name in ["out.jpg", "out", "out.png.bak"] {
+    for name in ["out.tiff", "out", "out.png.bak"] {
         let out = prism(&[
             "render",
             scene.to_str().unwrap(),
@@ -488,7 +488,7 @@ fn output_names_must_say_png() {
         ]);
         let e = stderr(&out);
         assert_eq!(out.status.code(), Some(2), "{name}: {e}");
-        assert!(e.contains(".png extension"), "{e}");
+        assert!(e.contains(".png, .jpg (or .jpeg), .exr or .pfm"), "{e}");
     }
     let upper = d.path("OUT.PNG");
     let out = prism(&[

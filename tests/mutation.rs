@@ -10,7 +10,7 @@ use proptest::prelude::*;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, OnceLock};
 
-const SEEDS: [&str; 8] = [
+const SEEDS: [&str; 9] = [
     include_str!("../fuzz/corpus/seed.toml"),
     include_str!("../fuzz/corpus/shapes.toml"),
     include_str!("../fuzz/corpus/sphere.toml"),
@@ -19,6 +19,7 @@ const SEEDS: [&str; 8] = [
     include_str!("../fuzz/corpus/environment.toml"),
     include_str!("../fuzz/corpus/solids.toml"),
     include_str!("../fuzz/corpus/effects.toml"),
+    include_str!("../fuzz/corpus/animation.toml"),
 ];
 
 /// Values that have broken renderers: overflow when squared or multiplied, underflow,
@@ -182,12 +183,30 @@ fn base_dir() -> &'static Path {
     .1
 }
 
-/// What must hold for any text: a scene that renders finite colours, or a short message.
+/// What must hold for any text: a scene that renders finite colours, or a short message;
+/// for an animated scene, at its first frame (as it loads) and at its last.
 fn loads_or_explains(text: &str) -> Result<(), TestCaseError> {
-    match parse_scene(text, Path::new("mutant.toml"), base_dir()) {
+    let path = Path::new("mutant.toml");
+    frame_loads_or_explains(parse_scene(text, path, base_dir()))?;
+    if let Ok(Some(animation)) = prism::scene::Animation::parse(text, path) {
+        let assets = prism::scene::Assets::Folder(base_dir());
+        frame_loads_or_explains(animation.scene_at(animation.frames - 1, path, assets))?;
+    }
+    Ok(())
+}
+
+fn frame_loads_or_explains(
+    scene: Result<prism::scene::Scene, prism::scene::SceneError>,
+) -> Result<(), TestCaseError> {
+    match scene {
         Err(e) => {
             let message = e.to_string();
-            prop_assert!(message.starts_with("mutant.toml"), "{message}");
+            let located = message
+                .strip_prefix("frame ")
+                .map_or(message.as_str(), |rest| {
+                    rest.split_once(": ").map_or(rest, |(_, after)| after)
+                });
+            prop_assert!(located.starts_with("mutant.toml"), "{message}");
             prop_assert!(message.chars().count() < 2000, "{} chars", message.len());
             prop_assert!(!message.chars().any(char::is_control), "{message:?}");
         }

@@ -1,12 +1,15 @@
 //! Command-line parsing and the headless commands.
 
+mod frames;
 mod render;
 mod stats;
+mod stitch;
+mod stop;
 
-use anyhow::{Context, Result};
+use anyhow::Result;
 use clap::{Parser, Subcommand};
 use prism::render::{OutputError, SettingsError};
-use prism::scene::{Scene, SceneError};
+use prism::scene::SceneError;
 use std::path::PathBuf;
 
 #[derive(Parser, Debug)]
@@ -15,6 +18,7 @@ use std::path::PathBuf;
     version,
     about = "A fast and accurate ray tracer with an interactive progressive viewer",
     long_about = None,
+    after_help = EXIT_STATUS_HELP,
     // `prism [VIEW OPTIONS] [SCENE]` is `prism view …`: the viewer is the default command.
     args_conflicts_with_subcommands = true
 )]
@@ -30,11 +34,23 @@ pub struct Args {
 pub enum Command {
     /// Open the interactive viewer (the default when no command is given).
     View(ViewArgs),
-    /// Render a scene to a PNG file, headless.
+    /// Render a scene to an image file (PNG, JPEG, EXR, PFM), headless: a whole frame, a
+    /// region or tile, one frame of an animation or a range of them.
     Render(render::RenderArgs),
+    /// Assemble tiles rendered with --tile or --region into the whole frame.
+    Stitch(stitch::StitchArgs),
     /// Measure speed and accuracy (the figures in docs/).
     Bench(crate::bench::BenchArgs),
 }
+
+/// The exit statuses, for `--help` (docs/farm.md says the same): a farm treats any status
+/// but 0 as a failed task.
+pub const EXIT_STATUS_HELP: &str = "Exit status:
+  0    done: every image asked for was written
+  1    failure: a write failed part-way, or an internal error
+  2    bad input: the scene file, a flag, a path, a tile
+  130  stopped by Ctrl+C (SIGINT); 143 by SIGTERM, 129 by SIGHUP (with --write-partial
+       the image so far was written; without, nothing)";
 
 /// A parser of flags that take an integer in `range` (a bound from prism::limits), so
 /// that the command line refuses exactly what the renderer refuses.
@@ -72,40 +88,20 @@ pub struct ViewArgs {
 pub fn run(args: Args) -> Result<()> {
     match args.command {
         Some(Command::Render(a)) => {
-            exit_on_signals()?;
+            stop::install()?;
             render::run(a)
+        }
+        Some(Command::Stitch(a)) => {
+            stop::install()?;
+            stitch::run(a)
         }
         Some(Command::View(a)) => view(a),
         Some(Command::Bench(a)) => {
-            exit_on_signals()?;
+            stop::install()?;
             crate::bench::run(a)
         }
         None => view(args.view),
     }
-}
-
-/// On SIGINT, SIGTERM or SIGHUP, a headless command removes its unfinished output files
-/// and exits with 128 + the signal's number (130, 143, 129), as shells expect.
-fn exit_on_signals() -> Result<()> {
-    use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
-    let mut signals = signal_hook::iterator::Signals::new([SIGINT, SIGTERM, SIGHUP])
-        .context("cannot install the signal handlers")?;
-    std::thread::Builder::new()
-        .name("prism-signals".into())
-        .spawn(move || {
-            if let Some(signal) = signals.forever().next() {
-                prism::render::remove_pending_files();
-                let name = match signal {
-                    SIGINT => "SIGINT",
-                    SIGTERM => "SIGTERM",
-                    _ => "SIGHUP",
-                };
-                eprintln!("\nprism: stopped by {name}; no output was written");
-                std::process::exit(128 + signal);
-            }
-        })
-        .context("cannot start the signal thread")?;
-    Ok(())
 }
 
 #[cfg(feature = "viewer")]
@@ -143,19 +139,31 @@ fn view(_: ViewArgs) -> Result<()> {
     anyhow::bail!("this prism was built without the viewer feature; use `prism render`")
 }
 
-/// The scene file at `path`, or the built-in seed scene.
-pub fn load_scene_or_seed(path: Option<&std::path::Path>) -> Result<Scene, SceneError> {
-    match path {
-        Some(path) => prism::scene::load_scene(path),
-        None => prism::seed::scene(),
-    }
-}
-
-/// 2 for bad input (scene file, settings, output path), 1 for anything else.
+/// The exit status for `error` (`EXIT_STATUS_HELP`): 128 + the signal's number for a stop,
+/// 2 for bad input (scene file, settings, flags, paths, tiles), 1 for anything else.
 pub fn exit_code(error: &anyhow::Error) -> u8 {
-    let bad_input = error
-        .chain()
-        .any(|e| e.is::<SceneError>() || e.is::<SettingsError>() || e.is::<OutputError>());
+    use prism::render::{ReadError, RegionError, StitchError};
+    if let Some(stop) = error.downcast_ref::<stop::Interrupted>() {
+        return stop.exit_code();
+    }
+    // A write that failed part-way is a failure, not bad input.
+    if error.chain().any(|e| {
+        matches!(
+            e.downcast_ref::<OutputError>(),
+            Some(OutputError::Write { .. })
+        )
+    }) {
+        return 1;
+    }
+    let bad_input = error.chain().any(|e| {
+        e.is::<SceneError>()
+            || e.is::<SettingsError>()
+            || e.is::<OutputError>()
+            || e.is::<RegionError>()
+            || e.is::<StitchError>()
+            || e.is::<ReadError>()
+            || e.is::<render::BadOption>()
+    });
     if bad_input { 2 } else { 1 }
 }
 

@@ -1,17 +1,22 @@
-//! `prism render`: a headless render to PNG with a progress bar.
+//! `prism render`: a headless render to an image file with a progress bar: the whole frame
+//! or a region or tile of it, one frame of an animation or a range of them.
 
+use super::frames::{FrameChoice, OutputTemplate};
 use super::stats::{Rays, RenderStats, Seconds, peak_memory_bytes};
-use anyhow::{Context, Result};
+use super::stop::{self, Interrupted};
+use anyhow::{Context, Result, bail};
 use indicatif::{ProgressBar, ProgressStyle};
-use prism::render::ImageFormat;
+use prism::color::Transfer;
 use prism::render::{AdaptiveSettings, PendingFile, RenderSettings};
+use prism::render::{BitDepth, ImageFormat, OutputOptions, PixelRect, Placement};
 use prism::sampler::SampleLayout;
-use prism::scene::PreparedScene;
-use std::path::PathBuf;
+use prism::scene::{PreparedScene, Scene, SceneFrames};
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::Instant;
 
 #[derive(clap::Args, Debug)]
+#[command(after_help = super::EXIT_STATUS_HELP)]
 pub struct RenderArgs {
     /// Scene file (TOML); the seed scene when omitted.
     pub scene: Option<PathBuf>,
@@ -34,11 +39,52 @@ pub struct RenderArgs {
     /// The distance in focus, along the view axis (default: the scene's `focus_distance`).
     #[arg(long, allow_negative_numbers = true)]
     pub focus_distance: Option<f32>,
-    /// Output PNG file (a symbolic link's target is replaced; a device or FIFO is written
-    /// to directly).
+    /// Output image; its extension names the format: .png, .jpg, .exr (linear float) or
+    /// .pfm (linear float). May hold {frame} or {frame:04} (the frame's number) and {tile}.
+    /// A symbolic link's target is replaced; a device or FIFO is written to directly.
     #[arg(long, short, default_value = "render.png")]
-    pub out: PathBuf,
-    /// Worker threads, 1..256 (default: all cores).
+    pub out: String,
+    /// Render only these pixels, X0,Y0,X1,Y1 (ends excluded): an image of the region's
+    /// size, equal to the same pixels of the full render, its place recorded in the file.
+    #[arg(long, value_name = "X0,Y0,X1,Y1", conflicts_with = "tile")]
+    pub region: Option<String>,
+    /// Render tile I (from 0) of the frame split into N bands of rows, as --region does.
+    #[arg(long, value_name = "I/N")]
+    pub tile: Option<String>,
+    /// Render frame N of the scene's [animation] (from 0).
+    #[arg(long, value_name = "N", conflicts_with_all = ["frames", "frame_from_env"])]
+    pub frame: Option<u32>,
+    /// Render frames A..B of the animation (B excluded; A..=B includes it; `all`: every
+    /// frame), each to --out with its {frame} filled in.
+    #[arg(long, value_name = "A..B", conflicts_with = "frame_from_env")]
+    pub frames: Option<String>,
+    /// Render the frame whose number the environment variable VAR holds (for a farm's job
+    /// arrays: SLURM_ARRAY_TASK_ID, or $(Process) passed by HTCondor).
+    #[arg(long, value_name = "VAR")]
+    pub frame_from_env: Option<String>,
+    /// Skip a frame or tile whose output file already exists (a farm job's rerun renders
+    /// only what is missing).
+    #[arg(long)]
+    pub skip_existing: bool,
+    /// Store colours with the sRGB curve, for display (default: linear, the seed's look;
+    /// also `[render] encoding = "srgb"`). Not for .exr or .pfm, which are linear.
+    #[arg(long)]
+    pub srgb: bool,
+    /// Multiply colours by 2^STOPS before they are stored (default: the scene's
+    /// `exposure`, else 0).
+    #[arg(long, value_name = "STOPS", allow_negative_numbers = true)]
+    pub exposure: Option<f32>,
+    /// Bits per channel of a PNG: 8 or 16.
+    #[arg(long, default_value_t = 8, value_parser = clap::builder::TypedValueParser::map(clap::builder::PossibleValuesParser::new(["8", "16"]), |s: String| s.parse::<u8>().expect("8 or 16")))]
+    pub bits: u8,
+    /// JPEG quality, 1..100.
+    #[arg(long, value_parser = super::within(prism::limits::JPEG_QUALITY))]
+    pub quality: Option<u8>,
+    /// On Ctrl+C or SIGTERM, write the image as far as it got (then exit 130 or 143)
+    /// instead of leaving no file.
+    #[arg(long)]
+    pub write_partial: bool,
+    /// Worker threads, 1..256 (default: all cores). The image is the same for any number.
     #[arg(long, value_parser = super::within(prism::limits::THREADS))]
     pub threads: Option<u16>,
     /// Most reflection/refraction bounces, 0..64 (default: the scene's, else 5).
@@ -63,9 +109,9 @@ pub struct RenderArgs {
     #[arg(long, short)]
     pub quiet: bool,
     /// Also write the statistics (time by stage, rays by kind, samples per pixel, peak
-    /// memory) to FILE as JSON.
+    /// memory) to FILE as JSON (may hold {frame} and {tile} as --out does).
     #[arg(long, value_name = "FILE")]
-    pub stats_json: Option<PathBuf>,
+    pub stats_json: Option<String>,
 }
 
 #[derive(clap::ValueEnum, Clone, Copy, Debug)]
@@ -74,20 +120,68 @@ pub enum Layout {
     Grid,
 }
 
+/// An option that does not fit the output asked for.
+#[derive(Debug, thiserror::Error)]
+#[error("{0}")]
+pub struct BadOption(pub String);
+
+/// What the flags and a frame's scene ask of its render and its file.
+struct Plan {
+    settings: RenderSettings,
+    region: PixelRect,
+    placement: Option<Placement>,
+    tile: Option<u32>,
+    options: OutputOptions,
+}
+
 pub fn run(args: RenderArgs) -> Result<()> {
     let start = Instant::now();
-    let mut scene = super::load_scene_or_seed(args.scene.as_deref())?;
-    let load_seconds = start.elapsed().as_secs_f64();
-    if let Some(depth) = args.max_depth {
-        scene.render.max_depth = depth;
+    let source = match &args.scene {
+        Some(path) => SceneFrames::load(path)?,
+        None => SceneFrames::fixed(prism::seed::scene()?),
+    };
+    let frames = FrameChoice::from_args(&args)?.frames(source.animation())?;
+    let out = OutputTemplate::parse("--out", &args.out)?;
+    let stats_out = match &args.stats_json {
+        Some(text) => Some(OutputTemplate::parse("--stats-json", text)?),
+        None => None,
+    };
+    out.require_frame("--out", frames.len())?;
+    if let Some(t) = &stats_out {
+        t.require_frame("--stats-json", frames.len())?;
     }
-    if args.aperture.is_some() || args.focus_distance.is_some() {
-        let mut camera = scene.camera;
-        camera.aperture = args.aperture.unwrap_or(camera.aperture);
-        camera.focus_distance = args.focus_distance.unwrap_or(camera.focus_distance);
-        camera.check().map_err(prism::render::SettingsError::Lens)?;
-        scene.camera = camera;
+    let pool = prism::render::thread_pool(args.threads.map(usize::from))
+        .context("cannot start the worker threads")?;
+    let mut load_seconds = Some(start.elapsed().as_secs_f64());
+    for frame in frames {
+        let frame_start = Instant::now();
+        let scene = source.frame(frame)?;
+        let load = load_seconds.take().unwrap_or(0.0) + frame_start.elapsed().as_secs_f64();
+        // Per frame: an animation may key the `[render]` table (its exposure, say).
+        let plan = &make_plan(&args, &scene)?;
+        let path = out.path(frame, plan.tile);
+        if args.skip_existing && path.exists() {
+            eprintln!("skipped {} (it exists)", path.display());
+            continue;
+        }
+        let stats_path = stats_out.as_ref().map(|t| t.path(frame, plan.tile));
+        let label = source.animation().map(|_| frame);
+        render_frame(
+            &args,
+            scene,
+            plan,
+            &pool,
+            &path,
+            stats_path.as_deref(),
+            label,
+            load,
+        )?;
     }
+    Ok(())
+}
+
+/// The settings, region and output options, from the flags and the frame's scene.
+fn make_plan(args: &RenderArgs, scene: &Scene) -> Result<Plan> {
     let mut settings = RenderSettings::for_scene(&scene.render, args.width, args.height, args.aa)?;
     if let Some(n) = args.samples {
         settings.samples = Some(n);
@@ -107,15 +201,98 @@ pub fn run(args: RenderArgs) -> Result<()> {
         });
     }
     settings.validate()?;
-    ImageFormat::from_path(&args.out)?;
+    let (width, height) = (settings.width, settings.height);
+    let (region, tile) = match (&args.region, &args.tile) {
+        (Some(text), _) => (PixelRect::parse(text)?, None),
+        (None, Some(text)) => {
+            let (index, count) = PixelRect::parse_tile(text)?;
+            (PixelRect::tile(index, count, width, height)?, Some(index))
+        }
+        (None, None) => (PixelRect::full(width, height), None),
+    };
+    region.check_within(width, height)?;
+    let placement = (!region.is_full(width, height)).then_some(Placement {
+        rect: region,
+        frame_width: width,
+        frame_height: height,
+    });
+
+    let mut encoding = scene.render.encoding;
+    if args.srgb {
+        encoding.transfer = Transfer::Srgb;
+    }
+    if let Some(stops) = args.exposure {
+        if !prism::limits::EXPOSURE.contains(&stops) {
+            bail!(BadOption(format!(
+                "--exposure {stops}: must be {} to {} stops",
+                prism::limits::EXPOSURE.start(),
+                prism::limits::EXPOSURE.end()
+            )));
+        }
+        encoding.exposure = stops;
+    }
+    let options = OutputOptions {
+        encoding,
+        depth: if args.bits == 16 {
+            BitDepth::Sixteen
+        } else {
+            BitDepth::Eight
+        },
+        jpeg_quality: args
+            .quality
+            .unwrap_or(OutputOptions::default().jpeg_quality),
+    };
+    // The format is the same for every frame: the template's extension.
+    let format = ImageFormat::from_path(Path::new(&args.out))?;
+    if args.quality.is_some() && format != ImageFormat::Jpeg {
+        bail!(BadOption(format!(
+            "--quality is a JPEG option; {} names a {} file",
+            args.out,
+            format.name()
+        )));
+    }
+    format.check(Path::new(&args.out), &options)?;
+    settings.high_dynamic_range = format.is_hdr();
+    Ok(Plan {
+        settings,
+        region,
+        placement,
+        tile,
+        options,
+    })
+}
+
+/// Renders one frame (or the region of it) to `path`.
+#[allow(clippy::too_many_arguments)]
+fn render_frame(
+    args: &RenderArgs,
+    mut scene: Scene,
+    plan: &Plan,
+    pool: &rayon::ThreadPool,
+    path: &Path,
+    stats_path: Option<&Path>,
+    frame: Option<u32>,
+    load_seconds: f64,
+) -> Result<()> {
+    let start = Instant::now();
+    if let Some(depth) = args.max_depth {
+        scene.render.max_depth = depth;
+    }
+    if args.aperture.is_some() || args.focus_distance.is_some() {
+        let mut camera = scene.camera;
+        camera.aperture = args.aperture.unwrap_or(camera.aperture);
+        camera.focus_distance = args.focus_distance.unwrap_or(camera.focus_distance);
+        camera.check().map_err(prism::render::SettingsError::Lens)?;
+        scene.camera = camera;
+    }
+    let settings = plan.settings;
+    let format = ImageFormat::from_path(path)?;
     // Claim the output file first: an unwritable path fails now, not after the render.
-    let pending = PendingFile::create(&args.out)?;
-    let stats_file = match &args.stats_json {
+    let pending = PendingFile::create(path)?;
+    let stats_file = match stats_path {
         Some(path) => Some(PendingFile::create(path)?),
         None => None,
     };
-    let pool = prism::render::thread_pool(args.threads.map(usize::from))
-        .context("cannot start the worker threads")?;
 
     let build_start = Instant::now();
     let prepared = Arc::new(PreparedScene::new(&scene));
@@ -125,34 +302,66 @@ pub fn run(args: RenderArgs) -> Result<()> {
     } else {
         ProgressBar::new(settings.total_passes() as u64)
     };
+    let prefix = frame.map_or_else(String::new, |f| format!("frame {f} "));
     bar.set_style(
-        ProgressStyle::with_template("{spinner} pass {pos}/{len} [{bar:30}] {elapsed} {msg}")
-            .expect("valid template")
-            .progress_chars("=> "),
+        ProgressStyle::with_template(&format!(
+            "{{spinner}} {prefix}pass {{pos}}/{{len}} [{{bar:30}}] {{elapsed}} {{msg}}"
+        ))
+        .expect("valid template")
+        .progress_chars("=> "),
     );
     let trace_start = Instant::now();
+    let tracing = stop::Tracing::begin();
+    let stopped = || stop::requested().is_some();
     let job = pool.install(|| {
         rayon::join(crate::fault_injection::injected_panic, || ());
-        prism::render::render(prepared, scene.camera, settings, |job, stats| {
-            bar.set_position(job.passes_done() as u64);
-            bar.set_message(format!(
-                "{:.0} ms/pass, {} px active",
-                stats.seconds * 1e3,
-                job.active_pixels()
-            ));
-        })
+        prism::render::render_region(
+            prepared,
+            scene.camera,
+            settings,
+            plan.region,
+            &stopped,
+            |job, stats| {
+                bar.set_position(job.passes_done() as u64);
+                bar.set_message(format!(
+                    "{:.0} ms/pass, {} px active",
+                    stats.seconds * 1e3,
+                    job.active_pixels()
+                ));
+            },
+        )
     });
+    drop(tracing);
     bar.finish_and_clear();
     let wall = trace_start.elapsed().as_secs_f64();
-    let path = pending.finish_png(&job.accumulator().to_rgb8())?;
+    let interrupted = stop::requested();
+    if let Some(signal) = interrupted
+        && !args.write_partial
+    {
+        // Dropping the claimed files removes their temporary files.
+        bail!(Interrupted {
+            signal,
+            saved: false
+        });
+    }
+    let sums = job.sums_of(plan.region);
+    let image = prism::render::encode(&sums, format, &plan.options);
+    let path = pending.finish_image(&image, format, &plan.options, plan.placement)?;
     let rays = job.rays_traced();
+    let what = match plan.placement {
+        Some(p) => format!("{} of {}×{}", p.rect, settings.width, settings.height),
+        None => format!("{}×{}", settings.width, settings.height),
+    };
     eprintln!(
-        "rendered {} ({}×{}, {} threads) in {:.3} s: {:.2} samples per pixel, {} passes, \
+        "rendered {} ({what}, {} thread{}) in {:.3} s: {:.2} samples per pixel, {} passes, \
          {:.1} M rays/s ({} primary, {} shadow, {} secondary)",
         path.display(),
-        settings.width,
-        settings.height,
         pool.current_num_threads(),
+        if pool.current_num_threads() == 1 {
+            ""
+        } else {
+            "s"
+        },
         wall,
         job.samples_per_pixel(),
         job.passes_done(),
@@ -167,6 +376,8 @@ pub fn run(args: RenderArgs) -> Result<()> {
             .as_ref()
             .map_or_else(|| "seed".into(), |p| p.display().to_string()),
         output: path.display().to_string(),
+        frame,
+        region: plan.placement.map(|p| p.rect.to_string()),
         width: settings.width,
         height: settings.height,
         threads: pool.current_num_threads(),
@@ -174,7 +385,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
             load: load_seconds,
             build: build_seconds,
             trace: wall,
-            total: start.elapsed().as_secs_f64(),
+            total: load_seconds + start.elapsed().as_secs_f64(),
         },
         samples_per_pixel: job.samples_per_pixel(),
         passes: job.passes_done(),
@@ -186,10 +397,17 @@ pub fn run(args: RenderArgs) -> Result<()> {
         },
         rays_per_second: rays.total() as f64 / wall.max(1e-9),
         peak_memory_bytes: peak_memory_bytes(),
+        complete: interrupted.is_none(),
     };
     eprintln!("{}", stats.lines());
     if let Some(file) = stats_file {
         file.finish_bytes(stats.to_json().as_bytes())?;
+    }
+    if let Some(signal) = interrupted {
+        bail!(Interrupted {
+            signal,
+            saved: true
+        });
     }
     Ok(())
 }

@@ -12,6 +12,10 @@ pub struct RenderStats {
     pub scene: String,
     /// The image written.
     pub output: String,
+    /// The animation's frame, for an animated scene.
+    pub frame: Option<u32>,
+    /// The pixels rendered, X0,Y0,X1,Y1, when not the whole frame.
+    pub region: Option<String>,
     pub width: u32,
     pub height: u32,
     pub threads: usize,
@@ -24,6 +28,8 @@ pub struct RenderStats {
     /// The most memory the process held at once (its resident set's high-water mark), in
     /// bytes; None where the system does not say (only Linux's /proc is read).
     pub peak_memory_bytes: Option<u64>,
+    /// False when a signal stopped the render and `--write-partial` wrote what it had.
+    pub complete: bool,
 }
 
 /// Wall-clock seconds of each stage.
@@ -85,6 +91,8 @@ mod tests {
         RenderStats {
             scene: "seed".into(),
             output: "out.png".into(),
+            frame: None,
+            region: None,
             width: 8,
             height: 6,
             threads: 2,
@@ -104,6 +112,7 @@ mod tests {
             },
             rays_per_second: 300.0,
             peak_memory_bytes: Some(3 << 20),
+            complete: true,
         }
     }
 

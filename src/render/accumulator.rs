@@ -107,6 +107,25 @@ impl Accumulator {
         self.pixels.fill(PixelSum::default());
     }
 
+    /// The sums of the pixels in `rect` (in this image's coordinates, inside it).
+    pub fn crop(&self, rect: super::PixelRect) -> Accumulator {
+        assert!(rect.check_within(self.width, self.height).is_ok());
+        let w = self.width as usize;
+        let pixels = (rect.y0..rect.y1)
+            .flat_map(|y| {
+                let row = y as usize * w;
+                self.pixels[row + rect.x0 as usize..row + rect.x1 as usize]
+                    .iter()
+                    .copied()
+            })
+            .collect();
+        Accumulator {
+            width: rect.width(),
+            height: rect.height(),
+            pixels,
+        }
+    }
+
     /// Total subsamples held.
     pub fn sample_count(&self) -> u64 {
         self.pixels.iter().map(|p| p.count as u64).sum()

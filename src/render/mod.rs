@@ -5,20 +5,27 @@
 mod accumulator;
 mod compare;
 mod heat_map;
+mod image_file;
 mod output;
 mod pass;
 mod progressive;
+mod region;
 mod settings;
+mod stitch;
 
 pub use accumulator::{Accumulator, PixelSum, luminance, to_8bit};
 pub use compare::fraction_differing;
 pub use heat_map::{ERROR_SCALE, Legend, View, mean_error, scale_color, write_view_rgba8};
-pub use output::{
-    ImageFormat, OutputError, PendingFile, remove_pending_files, write_bytes, write_png,
+pub use image_file::{
+    BitDepth, ImageFormat, OutputOptions, PLACEMENT_KEY, Placement, ReadError, ReadImage, encode,
+    read_image, sidecar_path,
 };
+pub use output::{OutputError, PendingFile, remove_pending_files, write_bytes, write_png};
 pub use pass::{BAND_ROWS, PassStats, render_pass};
 pub use progressive::{PassOutcome, ProgressiveRender};
+pub use region::{PixelRect, RegionError, adaptive_margin};
 pub use settings::{AdaptiveSettings, DEFAULT_MIN_WEIGHT, RenderSettings, SettingsError};
+pub use stitch::{StitchError, stitch};
 
 use crate::camera::Camera;
 use crate::scene::PreparedScene;
@@ -43,11 +50,29 @@ pub fn render(
     scene: Arc<PreparedScene>,
     camera: Camera,
     settings: RenderSettings,
+    on_pass: impl FnMut(&ProgressiveRender, &PassStats),
+) -> ProgressiveRender {
+    let full = PixelRect::full(settings.width, settings.height);
+    render_region(scene, camera, settings, full, &|| false, on_pass)
+}
+
+/// Renders the pixels of `region` (inside the frame) to convergence, or until `stop()`
+/// turns true (checked between bands of rows). The pixels come out exactly as the
+/// same pixels of the whole frame would: the render covers a margin around the region for
+/// adaptive sampling (`adaptive_margin`); `ProgressiveRender::sums_of` gives the region's.
+pub fn render_region(
+    scene: Arc<PreparedScene>,
+    camera: Camera,
+    settings: RenderSettings,
+    region: PixelRect,
+    stop: &(dyn Fn() -> bool + Sync),
     mut on_pass: impl FnMut(&ProgressiveRender, &PassStats),
 ) -> ProgressiveRender {
-    let mut job = ProgressiveRender::new(scene, camera, settings);
-    let never = || false;
-    while let PassOutcome::Finished(stats) = job.step(&never) {
+    let window = region.grown(adaptive_margin(&settings), settings.width, settings.height);
+    let mut job = ProgressiveRender::in_window(scene, camera, settings, window);
+    // A stop part-way through a pass leaves some pixels with one subsample more than
+    // others: each pixel's mean is still its own estimate so far.
+    while let PassOutcome::Finished(stats) = job.step(stop) {
         on_pass(&job, &stats);
     }
     job

@@ -3,7 +3,8 @@
 //! renamed over it only when complete. A symbolic link is followed, and its target replaced;
 //! a device or FIFO (`/dev/null`, a pipe) is written directly, never replaced.
 
-use crate::messages::{io_message, shown};
+use super::image_file::ImageFormat;
+use crate::messages::io_message;
 use std::fs::{File, OpenOptions};
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
@@ -31,7 +32,7 @@ pub enum OutputError {
         reason: String,
     },
     #[error(
-        "{}: prism writes PNG images; name the file with a .png extension (got {})",
+        "{}: the extension names the format: .png, .jpg (or .jpeg), .exr or .pfm (got {})",
         path.display(),
         match extension { Some(e) => format!("\".{e}\""), None => "no extension".into() }
     )]
@@ -42,32 +43,14 @@ pub enum OutputError {
         /// Its extension, if it has one.
         extension: Option<String>,
     },
-}
-
-/// The image formats prism writes, chosen by a path's extension.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ImageFormat {
-    /// Portable Network Graphics, 8 bits per channel.
-    Png,
-}
-
-impl ImageFormat {
-    /// The format `path` names by its extension; an unknown or missing one is refused, so
-    /// `out.jpg` never receives PNG bytes. A device or FIFO (`/dev/stdout`, a pipe) has no
-    /// extension to read and receives PNG.
-    pub fn from_path(path: &Path) -> Result<Self, OutputError> {
-        if std::fs::metadata(path).is_ok_and(|m| !m.is_file() && !m.is_dir()) {
-            return Ok(ImageFormat::Png);
-        }
-        let extension = path.extension().map(|e| e.to_string_lossy().into_owned());
-        match extension.as_deref().map(str::to_ascii_lowercase).as_deref() {
-            Some("png") => Ok(ImageFormat::Png),
-            _ => Err(OutputError::Format {
-                path: path.to_path_buf(),
-                extension: extension.map(|e| shown(&e)),
-            }),
-        }
-    }
+    /// Options the file's format cannot honour (16 bits in a JPEG, a curve in an EXR).
+    #[error("{}: {reason}", path.display())]
+    Options {
+        /// The file asked for.
+        path: PathBuf,
+        /// What cannot be done, in words.
+        reason: String,
+    },
 }
 
 /// How a target is written.
@@ -225,7 +208,7 @@ impl PendingFile {
     }
 
     /// Fills the file; a temporary one is made durable and renamed over the target.
-    fn commit(
+    pub(super) fn commit(
         self,
         fill: impl FnOnce(&File) -> Result<(), String>,
     ) -> Result<PathBuf, OutputError> {

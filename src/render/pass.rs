@@ -1,6 +1,7 @@
 //! One pass: subsample k of every (active) pixel, traced in parallel by bands of rows.
 
 use super::accumulator::Accumulator;
+use super::region::PixelRect;
 use super::settings::RenderSettings;
 use crate::accel::{CameraView, Reach};
 use crate::camera::CameraRays;
@@ -24,8 +25,8 @@ pub struct PassStats {
     pub seconds: f64,
 }
 
-/// Adds subsample `pass` to every pixel whose `active` flag is set (all pixels when `active`
-/// is None). Each pixel depends only on its own position and the pass index, so the result
+/// Adds subsample `pass` to every pixel of `window` (the frame's pixels that `acc` holds)
+/// whose `active` flag is set (all of them when `active` is None). Each pixel depends only on its own position and the pass index, so the result
 /// is the same whatever the number of threads. Returns None if `cancelled()` turned true
 /// part-way, leaving the accumulator holding a partial pass.
 #[allow(clippy::too_many_arguments)]
@@ -33,6 +34,7 @@ pub fn render_pass(
     scene: &PreparedScene,
     rays: &CameraRays,
     view: &CameraView,
+    window: PixelRect,
     sampler: &Sampler,
     pass: u32,
     settings: &RenderSettings,
@@ -41,6 +43,7 @@ pub fn render_pass(
     cancelled: &(dyn Fn() -> bool + Sync),
 ) -> Option<PassStats> {
     let start = std::time::Instant::now();
+    debug_assert_eq!((acc.width, acc.height), (window.width(), window.height()));
     let width = acc.width as usize;
     let band = width * BAND_ROWS;
     let results: Vec<Option<(RayCounts, u64)>> = acc
@@ -55,15 +58,15 @@ pub fn render_pass(
                 .with_self_intersection(settings.self_intersection);
             let mut traced = 0u64;
             for (row, row_pixels) in pixels.chunks_mut(width).enumerate() {
-                let y = band_index * BAND_ROWS + row;
-                let row_active = active.map(|a| &a[y * width..(y + 1) * width]);
-                let subsamples = sampler.row(y as u32, pass);
-                let y = y as u32;
-                for (x, sum) in row_pixels.iter_mut().enumerate() {
-                    if row_active.is_some_and(|a| !a[x]) {
+                let local_y = band_index * BAND_ROWS + row;
+                let row_active = active.map(|a| &a[local_y * width..(local_y + 1) * width]);
+                let y = window.y0 + local_y as u32;
+                let subsamples = sampler.row(y, pass);
+                for (local_x, sum) in row_pixels.iter_mut().enumerate() {
+                    if row_active.is_some_and(|a| !a[local_x]) {
                         continue;
                     }
-                    let x = x as u32;
+                    let x = window.x0 + local_x as u32;
                     let mut stream = SampleStream::new(x, y, pass);
                     let sample = if rays.has_lens() {
                         // Lens rays do not start at the eye: the camera view (which lists
@@ -79,10 +82,12 @@ pub fn render_pass(
                         };
                         integrator.trace_primary(view.reach(x, y), ray, stream)
                     };
-                    sum.add(
-                        sample.color.clamp(glam::Vec3::ZERO, glam::Vec3::ONE),
-                        sample.signature,
-                    );
+                    let color = if settings.high_dynamic_range {
+                        sample.color
+                    } else {
+                        sample.color.clamp(glam::Vec3::ZERO, glam::Vec3::ONE)
+                    };
+                    sum.add(color, sample.signature);
                     traced += 1;
                 }
             }

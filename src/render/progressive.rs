@@ -3,6 +3,7 @@
 
 use super::accumulator::{Accumulator, PixelSum};
 use super::pass::{PassStats, render_pass};
+use super::region::PixelRect;
 use super::settings::RenderSettings;
 use crate::accel::CameraView;
 use crate::appearance::Appearance;
@@ -31,6 +32,9 @@ pub struct ProgressiveRender {
     settings: RenderSettings,
     sampler: Sampler,
     rays: CameraRays,
+    /// The pixels rendered: the whole frame, or a region of it with its margin
+    /// (`region::adaptive_margin`). The accumulator and the flags below cover just these.
+    window: PixelRect,
     /// What primary rays can hit first, by pixel: built at the first pass after the camera
     /// or the geometry changes.
     view: Option<CameraView>,
@@ -52,13 +56,27 @@ impl ProgressiveRender {
     /// `settings` should have passed `RenderSettings::validate`; the one exception is the
     /// bench's reference image, which uses more than 8×8 subsamples.
     pub fn new(scene: Arc<PreparedScene>, camera: Camera, settings: RenderSettings) -> Self {
+        let window = PixelRect::full(settings.width, settings.height);
+        Self::in_window(scene, camera, settings, window)
+    }
+
+    /// A render of just the pixels in `window` of the frame `settings` describes, each
+    /// traced exactly as in the whole frame. `window` must lie inside the frame.
+    pub fn in_window(
+        scene: Arc<PreparedScene>,
+        camera: Camera,
+        settings: RenderSettings,
+        window: PixelRect,
+    ) -> Self {
         assert!(settings.width > 0 && settings.height > 0 && settings.aa > 0);
-        let pixels = settings.width as usize * settings.height as usize;
+        assert!(window.check_within(settings.width, settings.height).is_ok());
+        let pixels = window.area() as usize;
         Self {
             sampler: Sampler::new(settings.aa, settings.layout),
             rays: camera.rays(settings.width, settings.height),
+            window,
             view: None,
-            accumulator: Accumulator::new(settings.width, settings.height),
+            accumulator: Accumulator::new(window.width(), window.height()),
             active: vec![true; pixels],
             settled_before: vec![false; pixels],
             active_count: pixels,
@@ -108,7 +126,8 @@ impl ProgressiveRender {
         self.restart();
     }
 
-    /// New settings (size, anti-aliasing, adaptivity); `settings` must be valid.
+    /// New settings (size, anti-aliasing, adaptivity); `settings` must be valid. The render
+    /// covers the whole of the new frame.
     pub fn set_settings(&mut self, settings: RenderSettings) {
         *self = Self::new(self.scene.clone(), self.camera, settings);
     }
@@ -134,6 +153,7 @@ impl ProgressiveRender {
             &self.scene,
             &self.rays,
             view,
+            self.window,
             &self.sampler,
             self.passes_done,
             &self.settings,
@@ -175,7 +195,7 @@ impl ProgressiveRender {
         }
         let near_edges_decided = n >= adaptive.edge_samples;
         let confirm = self.is_stochastic();
-        let (w, h) = (self.settings.width as usize, self.settings.height as usize);
+        let (w, h) = (self.window.width() as usize, self.window.height() as usize);
         let pixels = &self.accumulator.pixels;
         let count: usize = self
             .active
@@ -225,7 +245,28 @@ impl ProgressiveRender {
         self.settings.total_passes()
     }
 
-    /// The sums so far.
+    /// The pixels rendered (the whole frame unless made `in_window`).
+    pub fn window(&self) -> PixelRect {
+        self.window
+    }
+
+    /// The sums so far of the pixels of `region`, which lies inside the window.
+    pub fn sums_of(&self, region: PixelRect) -> std::borrow::Cow<'_, Accumulator> {
+        assert!(self.window.contains(&region));
+        if region == self.window {
+            return std::borrow::Cow::Borrowed(&self.accumulator);
+        }
+        let w = self.window;
+        let inside = PixelRect {
+            x0: region.x0 - w.x0,
+            y0: region.y0 - w.y0,
+            x1: region.x1 - w.x0,
+            y1: region.y1 - w.y0,
+        };
+        std::borrow::Cow::Owned(self.accumulator.crop(inside))
+    }
+
+    /// The sums so far, of the window's pixels.
     pub fn accumulator(&self) -> &Accumulator {
         &self.accumulator
     }

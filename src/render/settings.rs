@@ -26,6 +26,9 @@ pub struct RenderSettings {
     pub adaptive: Option<AdaptiveSettings>,
     /// How secondary rays avoid re-hitting their own surface.
     pub self_intersection: SelfIntersection,
+    /// Keep subsamples brighter than white, for a linear HDR file (EXR, PFM); off, each is
+    /// clamped to the 0..1 a display shows before it is summed, as the seed does.
+    pub high_dynamic_range: bool,
 }
 
 /// Stop refining a pixel once its subsamples agree.
@@ -72,6 +75,7 @@ impl RenderSettings {
             min_weight: DEFAULT_MIN_WEIGHT,
             adaptive: None,
             self_intersection: SelfIntersection::ErrorBound,
+            high_dynamic_range: false,
         }
     }
 

@@ -46,6 +46,8 @@ pub struct RenderDefaults {
     /// Subsamples per pixel when a scene asks for more (or fewer) than the N×N grid:
     /// soft shadows, depth of field and glossy reflection converge with more.
     pub samples: Option<u32>,
+    /// How the image's linear colours are stored in a file (`encoding`, `exposure`).
+    pub encoding: crate::color::Encoding,
 }
 
 impl Default for RenderDefaults {
@@ -56,6 +58,7 @@ impl Default for RenderDefaults {
             aa: 2,
             max_depth: 5,
             samples: None,
+            encoding: crate::color::Encoding::default(),
         }
     }
 }

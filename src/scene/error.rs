@@ -48,6 +48,15 @@ pub enum SceneError {
         /// What is wrong, and which of the scene's tables reads the file.
         message: String,
     },
+    /// A frame of an animated scene that does not validate: the animation's values at that
+    /// frame put a field out of its bounds (a line is the field's, in the scene file).
+    #[error("frame {frame}: {error}")]
+    Frame {
+        /// The frame, from 0.
+        frame: u32,
+        /// What is wrong at it.
+        error: Box<SceneError>,
+    },
 }
 
 impl SceneError {
@@ -58,6 +67,7 @@ impl SceneError {
             SceneError::Syntax { line, .. }
             | SceneError::Invalid { line, .. }
             | SceneError::Asset { line, .. } => Some(*line),
+            SceneError::Frame { error, .. } => error.line(),
         }
     }
 }

@@ -61,6 +61,9 @@ struct SceneFile {
     cones: Vec<Spanned<solids::ConeDef>>,
     #[serde(default)]
     tori: Vec<Spanned<solids::TorusDef>>,
+    /// Read by animation.rs; a still frame's validation passes over it.
+    #[allow(dead_code)]
+    animation: Option<serde::de::IgnoredAny>,
 }
 
 #[derive(Deserialize)]
@@ -98,6 +101,8 @@ struct RenderDef {
     /// hand, for messages that say which form was meant).
     background: Option<toml::Value>,
     ambient: Option<V3>,
+    encoding: Option<String>,
+    exposure: Option<f32>,
 }
 
 /// A `background` value, by form.
@@ -425,6 +430,28 @@ pub fn parse_loaded(source: &str, path: &Path, assets: Assets) -> Result<LoadedS
 /// Validates scene text, adding each file it reads to `files` (once) and returning each
 /// object's origin with the scene.
 fn parse_recorded(
+    source: &str,
+    path: &Path,
+    assets: Assets,
+    files: &mut Vec<PathBuf>,
+) -> Result<(Scene, Vec<ObjectOrigin>), SceneError> {
+    // An animated scene is validated at its first frame, as it renders by default.
+    match super::animation::Animation::parse(source, path)? {
+        None => parse_still(source, path, assets, files),
+        Some(animation) => {
+            parse_still(&animation.source_at(0), path, assets, files).map_err(|error| {
+                SceneError::Frame {
+                    frame: 0,
+                    error: Box::new(error),
+                }
+            })
+        }
+    }
+}
+
+/// Validates scene text as a still, its values as written (an `[animation]` table is
+/// passed over: see `parse_recorded`).
+pub(super) fn parse_still(
     source: &str,
     path: &Path,
     assets: Assets,
@@ -1376,9 +1403,42 @@ impl Validator<'_> {
                     *limits::SAMPLES.end() as i64,
                 )?),
             },
+            encoding: self.encoding(&at, r)?,
         };
         let ambient = self.radiance(&at, "ambient", r.ambient.unwrap_or([0.2; 3]))?;
         Ok((render, ambient))
+    }
+
+    /// The `[render]` table's `encoding` (a curve's name) and `exposure` (stops).
+    fn encoding(&self, at: &Item, r: &RenderDef) -> Result<crate::color::Encoding, SceneError> {
+        use crate::color::{Encoding, Transfer};
+        let transfer = match r.encoding.as_deref() {
+            None => Transfer::Linear,
+            Some(name) => Transfer::from_name(name).ok_or_else(|| {
+                self.field_error(
+                    at,
+                    "encoding",
+                    format!(
+                        "`encoding` must be \"linear\" (the default) or \"srgb\", got {}",
+                        quoted(name)
+                    ),
+                )
+            })?,
+        };
+        let exposure = self.number(at, "exposure", r.exposure.unwrap_or(0.0))?;
+        if !limits::EXPOSURE.contains(&exposure) {
+            return Err(self.field_error(
+                at,
+                "exposure",
+                format!(
+                    "`exposure` must be {} to {} stops, got {}",
+                    limits::EXPOSURE.start(),
+                    limits::EXPOSURE.end(),
+                    number(exposure)
+                ),
+            ));
+        }
+        Ok(Encoding { transfer, exposure })
     }
 
     /// The `[render]` table's `background`: black when it has none.

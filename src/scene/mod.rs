@@ -5,6 +5,7 @@
 //!                                                                      = Geometry + Appearance
 //! ```
 
+mod animation;
 mod camera_table;
 mod description;
 mod edit;
@@ -16,6 +17,7 @@ mod prepared;
 mod save;
 mod spans;
 
+pub use animation::{Animation, Interpolation, Key, OBJECT_TABLES, SceneFrames, Track};
 pub use camera_table::camera_table;
 pub use description::{RenderDefaults, Scene, SceneObject, ShapeDesc};
 pub use edit::{EditError, MaterialProblem, check_camera, check_material};
