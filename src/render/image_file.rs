@@ -190,14 +190,15 @@ impl PendingFile {
         options: &OutputOptions,
         placement: Option<Placement>,
     ) -> Result<PathBuf, OutputError> {
+        let sidecar = sidecar_path(self.path());
         if let Some(p) = placement
             && format != ImageFormat::Png
         {
             let line = format!("{PLACEMENT_KEY}: {}\n", p.text());
-            super::output::write_bytes(&sidecar_path(self.path()), line.as_bytes())?;
+            super::output::write_bytes(&sidecar, line.as_bytes())?;
         }
         let quality = options.jpeg_quality;
-        self.commit(|file| {
+        let written = self.commit(|file| {
             let mut writer = BufWriter::new(file);
             match format {
                 ImageFormat::Png => write_png(&mut writer, image, placement)?,
@@ -217,7 +218,12 @@ impl PendingFile {
                 ImageFormat::Pfm => write_pfm(&mut writer, &image.to_rgb32f())?,
             }
             writer.flush().map_err(|e| io_message(&e))
-        })
+        })?;
+        // A sidecar left by an earlier tile of the same name would misplace this image.
+        if placement.is_none() || format == ImageFormat::Png {
+            let _ = std::fs::remove_file(&sidecar);
+        }
+        Ok(written)
     }
 }
 
@@ -379,7 +385,8 @@ pub fn read_image(path: &Path, max_side: u32) -> Result<ReadImage, ReadError> {
             }
         }
     };
-    if placement_text.is_none() {
+    // A PNG records its placement in itself; only the other formats have sidecars.
+    if placement_text.is_none() && format != ImageFormat::Png {
         let sidecar = sidecar_path(path);
         if let Ok(text) = std::fs::read_to_string(&sidecar) {
             let line = text.lines().next().unwrap_or_default();
@@ -566,6 +573,15 @@ mod tests {
             }
             assert_eq!(sidecar_path(&path).exists(), format != ImageFormat::Png);
         }
+        // A whole frame written where a tile was leaves no stale sidecar to misplace it.
+        let path = dir.path().join("e.pfm");
+        let image = encode(&acc, ImageFormat::Pfm, &OutputOptions::default());
+        PendingFile::create(&path)
+            .unwrap()
+            .finish_image(&image, ImageFormat::Pfm, &OutputOptions::default(), None)
+            .unwrap();
+        assert!(!sidecar_path(&path).exists());
+        assert_eq!(read_image(&path, 100).unwrap().placement, None);
         // The float formats keep values above white, linear.
         let back = read_image(&dir.path().join("e.pfm"), 100).unwrap();
         assert_eq!(back.image.to_rgb32f().get_pixel(2, 1).0, [3.5, 1.75, 0.1]);
