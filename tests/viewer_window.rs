@@ -4,7 +4,8 @@
 //! closes the window (with the keyboard focus in the panel too) and ends the render thread.
 //! tests/window/panic.sh checks that a panic in the render thread is shown and reported, and
 //! tests/window/focus.sh that a click focuses the lens, and tests/window/edit.sh picking,
-//! editing, saving and reloading, and tests/window/broken_start.sh a scene that fails at start.
+//! editing, saving and reloading, tests/window/broken_start.sh a scene that fails at start,
+//! and tests/window/animation.sh stepping through an animation's frames.
 //!
 //! Needs xvfb-run, xdotool and ImageMagick (`.ci/run` installs them). Without them the test
 //! says so and passes, unless PRISM_REQUIRE_WINDOW_TEST is set, as it is in CI.
@@ -451,4 +452,48 @@ fn a_scene_that_fails_at_start_opens_the_window_with_its_error() {
     let fixed = fixed.to_string_lossy().into_owned();
     let reference = render_headless(work.path(), &[&fixed, "--width", "320", "--height", "240"]);
     assert_eq!(differing(&shot, &reference, 0), 0.0, "the fixed scene");
+}
+
+/// tests/window/animation.sh: the panel's frame row steps through an animated scene (the
+/// turntable): three clicks of ">" show frame 3, a typed 40 shows frame 40, each as
+/// `prism render --frame N` draws it.
+#[cfg(feature = "viewer")]
+#[test]
+fn the_frame_row_steps_through_an_animation() {
+    if !window_tools() {
+        return;
+    }
+    let work = tempfile::tempdir().unwrap();
+    let assets = concat!(env!("CARGO_MANIFEST_DIR"), "/assets");
+    let text = std::fs::read_to_string(format!("{assets}/scenes/turntable.toml")).unwrap();
+    let text = text.replace(
+        "\"../meshes/bunny.obj\"",
+        &format!("\"{assets}/meshes/bunny.obj\""),
+    );
+    let scene = work.path().join("scene.toml");
+    std::fs::write(&scene, text).unwrap();
+    let out = under_xvfb("animation.sh", work.path());
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let log = std::fs::read_to_string(work.path().join("viewer.log")).unwrap_or_default();
+    assert!(
+        out.status.success(),
+        "animation.sh failed\n{stdout}\nviewer log: {log}"
+    );
+    let taken = shots(&work.path().join("shots"));
+    assert_eq!(taken.len(), 2, "{taken:?}");
+    let scene = scene.to_string_lossy().into_owned();
+    for (shot, frame) in taken.iter().zip(["3", "40"]) {
+        let shot = image::open(shot).unwrap().into_rgb8();
+        let reference = render_headless(
+            work.path(),
+            &[
+                &scene, "--width", "320", "--height", "240", "--frame", frame,
+            ],
+        );
+        assert_eq!(differing(&shot, &reference, 0), 0.0, "frame {frame}");
+    }
+    // The frames differ: the stepping was seen.
+    let first = image::open(&taken[0]).unwrap().into_rgb8();
+    let second = image::open(&taken[1]).unwrap().into_rgb8();
+    assert!(differing(&first, &second, 0) > 0.05);
 }

@@ -559,7 +559,10 @@ pub struct SceneFrames {
 
 enum FramesKind {
     Still(super::Scene),
-    Animated { path: PathBuf, animation: Animation },
+    Animated {
+        path: PathBuf,
+        animation: std::sync::Arc<Animation>,
+    },
 }
 
 impl SceneFrames {
@@ -567,7 +570,7 @@ impl SceneFrames {
     /// `load_scene` does).
     pub fn load(path: &Path) -> Result<Self, SceneError> {
         let loaded = super::load_scene_file(path).result?;
-        let kind = match Animation::parse(&loaded.source, path)? {
+        let kind = match loaded.animation {
             None => FramesKind::Still(loaded.scene),
             Some(animation) => FramesKind::Animated {
                 path: path.to_path_buf(),
@@ -790,6 +793,27 @@ keys = [{ frame = 0, value = [0.8, 0.1, 0.1] }, { frame = 9, value = [0.1, 0.1, 
             glam::Vec3::ZERO,
             "positions are relative to the eye"
         );
+    }
+
+    #[test]
+    fn a_file_loads_at_any_frame_clamped_to_its_last() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("a.toml");
+        std::fs::write(&path, SCENE).unwrap();
+        let frames = SceneFrames::load(&path).unwrap();
+        let at = |n| crate::scene::load_scene_file_at(&path, n).result.unwrap();
+        assert_eq!(at(0).scene, frames.frame(0).unwrap());
+        let six = at(6);
+        assert_eq!((six.frame, six.scene), (6, frames.frame(6).unwrap()));
+        let past = at(99);
+        assert_eq!((past.frame, past.scene), (9, frames.frame(9).unwrap()));
+        assert_eq!(past.animation.as_ref().map(|a| a.frames), Some(10));
+        // A still file has only frame 0.
+        let still = dir.path().join("b.toml");
+        std::fs::write(&still, &SCENE[..SCENE.find("[animation]").unwrap()]).unwrap();
+        let loaded = crate::scene::load_scene_file_at(&still, 5).result.unwrap();
+        assert_eq!(loaded.frame, 0);
+        assert!(loaded.animation.is_none());
     }
 
     fn refusal(edit: (&str, &str)) -> String {

@@ -265,6 +265,10 @@ pub struct LoadedScene {
     pub source: String,
     /// For each of `scene.objects`, in order, the table entry it comes from.
     pub origins: Vec<ObjectOrigin>,
+    /// The file's animation, if it has an `[animation]` table.
+    pub animation: Option<Arc<super::animation::Animation>>,
+    /// The frame `scene` is (0 for a still scene).
+    pub frame: u32,
 }
 
 /// The entry of a scene file that made an object.
@@ -290,16 +294,32 @@ pub struct SceneLoad {
     pub files: Vec<PathBuf>,
 }
 
-/// Reads and validates the scene file at `path`, keeping what [`SceneLoad`] describes.
+/// Reads and validates the scene file at `path`, keeping what [`SceneLoad`] describes; an
+/// animated file at its first frame.
 pub fn load_scene_file(path: &Path) -> SceneLoad {
+    load_scene_file_at(path, 0)
+}
+
+/// As [`load_scene_file`], at `frame` of the file's animation (the last frame for one past
+/// it; a still file has only frame 0).
+pub fn load_scene_file_at(path: &Path, frame: u32) -> SceneLoad {
     let mut files = vec![path.to_path_buf()];
     let result = read_scene_text(path).and_then(|source| {
         let base = path.parent().unwrap_or(Path::new("."));
-        let (scene, origins) = parse_recorded(&source, path, Assets::Folder(base), &mut files)?;
+        let assets = Assets::Folder(base);
+        let (mut scene, origins, animation) = parse_recorded(&source, path, assets, &mut files)?;
+        let frame = animation.as_ref().map_or(0, |a| frame.min(a.frames - 1));
+        if let Some(animation) = &animation
+            && frame > 0
+        {
+            scene = animation.scene_at(frame, path, assets)?;
+        }
         Ok(LoadedScene {
             scene,
             source,
             origins,
+            animation: animation.map(Arc::new),
+            frame,
         })
     });
     SceneLoad { result, files }
@@ -413,38 +433,51 @@ pub fn parse_scene(source: &str, path: &Path, base_dir: &Path) -> Result<Scene, 
 
 /// Validates scene text; `path` names it in messages, `assets` finds the files it names.
 pub fn parse_scene_with(source: &str, path: &Path, assets: Assets) -> Result<Scene, SceneError> {
-    parse_recorded(source, path, assets, &mut Vec::new()).map(|(scene, _)| scene)
+    parse_recorded(source, path, assets, &mut Vec::new()).map(|(scene, ..)| scene)
 }
 
 /// Validates scene text, keeping what saving it back needs (as [`load_scene_file`] does for
 /// a file): for a scene that was not read from a file, such as the built-in seed.
 pub fn parse_loaded(source: &str, path: &Path, assets: Assets) -> Result<LoadedScene, SceneError> {
-    let (scene, origins) = parse_recorded(source, path, assets, &mut Vec::new())?;
+    let (scene, origins, animation) = parse_recorded(source, path, assets, &mut Vec::new())?;
     Ok(LoadedScene {
         scene,
         source: source.to_string(),
         origins,
+        animation: animation.map(Arc::new),
+        frame: 0,
     })
 }
 
 /// Validates scene text, adding each file it reads to `files` (once) and returning each
 /// object's origin with the scene.
+#[allow(clippy::type_complexity)]
 fn parse_recorded(
     source: &str,
     path: &Path,
     assets: Assets,
     files: &mut Vec<PathBuf>,
-) -> Result<(Scene, Vec<ObjectOrigin>), SceneError> {
+) -> Result<
+    (
+        Scene,
+        Vec<ObjectOrigin>,
+        Option<super::animation::Animation>,
+    ),
+    SceneError,
+> {
     // An animated scene is validated at its first frame, as it renders by default.
     match super::animation::Animation::parse(source, path)? {
-        None => parse_still(source, path, assets, files),
+        None => {
+            let (scene, origins) = parse_still(source, path, assets, files)?;
+            Ok((scene, origins, None))
+        }
         Some(animation) => {
-            parse_still(&animation.source_at(0), path, assets, files).map_err(|error| {
-                SceneError::Frame {
+            let (scene, origins) = parse_still(&animation.source_at(0), path, assets, files)
+                .map_err(|error| SceneError::Frame {
                     frame: 0,
                     error: Box::new(error),
-                }
-            })
+                })?;
+            Ok((scene, origins, Some(animation)))
         }
     }
 }

@@ -5,8 +5,10 @@
 
 use super::watch::Watcher;
 use prism::camera::Camera;
-use prism::scene::{LoadedScene, Scene, SceneLoad, load_scene_file};
+use prism::scene::{LoadedScene, Scene, SceneLoad, load_scene_file_at};
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicU32, Ordering};
 use std::sync::mpsc::Sender;
 
 /// A finished load of `path`, and whether it was asked for (Open, F5, Save as) rather than
@@ -26,6 +28,9 @@ pub struct Document {
     pub saved: Option<Scene>,
     /// Why the last load failed, until one succeeds.
     pub error: Option<String>,
+    /// The frame of an animated file that loads show (shared with the watcher, so that a
+    /// reload on save stays at it).
+    frame: Arc<AtomicU32>,
     watcher: Option<Watcher>,
     sender: Sender<LoadMessage>,
     wake: std::sync::Arc<dyn Fn() + Send + Sync>,
@@ -39,6 +44,7 @@ impl Document {
             loaded: None,
             saved: None,
             error: None,
+            frame: Arc::new(AtomicU32::new(0)),
             watcher: None,
             sender,
             wake: std::sync::Arc::new(wake),
@@ -50,7 +56,7 @@ impl Document {
         let (sender, wake) = (self.sender.clone(), self.wake.clone());
         let p = path.to_path_buf();
         self.watcher = None;
-        let watcher = Watcher::spawn(p.clone(), files, move |load| {
+        let watcher = Watcher::spawn(p.clone(), files, self.frame.clone(), move |load| {
             let _ = sender.send(LoadMessage {
                 path: p.clone(),
                 load,
@@ -70,10 +76,11 @@ impl Document {
     /// Loads `path` on a thread of its own; the result comes as a message.
     pub fn load_in_background(&self, path: PathBuf) {
         let (sender, wake) = (self.sender.clone(), self.wake.clone());
+        let frame = self.frame.load(Ordering::Relaxed);
         let spawned = std::thread::Builder::new()
             .name("prism-load".into())
             .spawn(move || {
-                let load = load_scene_file(&path);
+                let load = load_scene_file_at(&path, frame);
                 let _ = sender.send(LoadMessage {
                     path,
                     load,
@@ -84,6 +91,16 @@ impl Document {
         if let Err(e) = spawned {
             eprintln!("prism: error: cannot start a thread to load the scene: {e}");
         }
+    }
+
+    /// Shows `frame` of an animated file from the next load on (0 for another file).
+    pub fn set_frame(&self, frame: u32) {
+        self.frame.store(frame, Ordering::Relaxed);
+    }
+
+    /// The frame loads show.
+    pub fn frame(&self) -> u32 {
+        self.frame.load(Ordering::Relaxed)
     }
 
     /// Whether `scene` differs from the scene as last loaded or saved.

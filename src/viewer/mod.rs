@@ -335,6 +335,10 @@ impl App {
             can_undo: self.history.can_undo(),
             can_redo: self.history.can_redo(),
             recent: self.recent.clone(),
+            animation: (self.document.loaded.as_ref())
+                .and_then(|l| l.animation.as_ref())
+                .map(|a| (a.frames, a.fps)),
+            frame: self.document.frame(),
         };
         let panel = &mut self.panel;
         let status = &self.status;
@@ -465,6 +469,12 @@ impl App {
             self.open(path);
         }
         if changes.reload {
+            self.reload();
+        }
+        if let Some(frame) = changes.frame {
+            // The file is loaded again at the frame: unsaved edits are one undo away, as
+            // for any reload.
+            self.document.set_frame(frame);
             self.reload();
         }
         if changes.undo {
@@ -599,6 +609,9 @@ impl App {
     /// Opens another scene file (loaded on a thread; the window shows it when it is ready).
     fn open(&mut self, path: PathBuf) {
         self.say(format!("opening {}", path.display()), false);
+        if self.document.path.as_deref() != Some(path.as_path()) {
+            self.document.set_frame(0);
+        }
         self.document.load_in_background(path);
     }
 
@@ -635,6 +648,13 @@ impl App {
                 return self.say(format!("the scene did not load: {text}"), true);
             }
         };
+        // Frames asked for one after another load in parallel: only the last one asked
+        // for is shown.
+        if let Some(animation) = &loaded.animation
+            && loaded.frame != self.document.frame().min(animation.frames - 1)
+        {
+            return;
+        }
         let scene = loaded.scene.clone();
         let camera = match (&self.document.loaded, same_file) {
             (Some(before), true) => {
@@ -655,7 +675,11 @@ impl App {
             self.input.step = step_for(&scene);
             self.panel.samples = scene.render.samples;
         }
-        let what = if same_file { "reloaded" } else { "opened" };
+        let what = match (&loaded.animation, same_file) {
+            (Some(_), true) => format!("frame {} of", loaded.frame),
+            (_, true) => "reloaded".into(),
+            _ => "opened".into(),
+        };
         self.document.error = None;
         self.document.saved = Some(scene.clone());
         self.document.loaded = Some(loaded);

@@ -55,6 +55,8 @@ pub struct Changes {
     pub reload: bool,
     pub undo: bool,
     pub redo: bool,
+    /// Show this frame of the animation.
+    pub frame: Option<u32>,
     /// Show the image or a heat map.
     pub view: Option<View>,
 }
@@ -74,6 +76,10 @@ pub struct FileStatus {
     pub can_redo: bool,
     /// Recently opened scene files, newest first.
     pub recent: Vec<PathBuf>,
+    /// An animated file's frame count and rate.
+    pub animation: Option<(u32, f64)>,
+    /// The frame shown.
+    pub frame: u32,
 }
 
 pub struct PanelState {
@@ -251,6 +257,32 @@ impl PanelState {
                 changes.reload = true;
             }
         });
+        if let Some((frames, fps)) = self.file.animation {
+            ui.horizontal(|ui| {
+                let last = frames - 1;
+                let mut frame = self.file.frame.min(last);
+                ui.label("frame");
+                if ui
+                    .add_enabled(frame > 0, egui::Button::new("<").small())
+                    .on_hover_text("the frame before")
+                    .clicked()
+                {
+                    frame -= 1;
+                }
+                ui.add(egui::DragValue::new(&mut frame).range(0..=last));
+                if ui
+                    .add_enabled(frame < last, egui::Button::new(">").small())
+                    .on_hover_text("the next frame")
+                    .clicked()
+                {
+                    frame += 1;
+                }
+                ui.label(format!("of 0–{last}, {fps} fps"));
+                if frame != self.file.frame {
+                    changes.frame = Some(frame);
+                }
+            });
+        }
         ui.horizontal(|ui| {
             ui.add(
                 egui::TextEdit::singleline(&mut self.path_entry)

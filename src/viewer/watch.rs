@@ -4,10 +4,10 @@
 //! second, which works on every file system (network mounts and editors that replace the
 //! file by renaming included) without a platform notification API.
 
-use prism::scene::{SceneLoad, load_scene_file};
+use prism::scene::{SceneLoad, load_scene_file_at};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU32, Ordering};
 use std::time::{Duration, Instant, SystemTime};
 
 /// How often the files are looked at.
@@ -86,6 +86,7 @@ impl Watcher {
     pub fn spawn(
         path: PathBuf,
         files: Vec<PathBuf>,
+        frame: Arc<AtomicU32>,
         loaded: impl Fn(SceneLoad) + Send + 'static,
     ) -> std::io::Result<Self> {
         let stop = Arc::new(AtomicBool::new(false));
@@ -97,7 +98,7 @@ impl Watcher {
                 while !stop_.load(Ordering::Relaxed) {
                     std::thread::sleep(POLL);
                     if settle.poll(Instant::now()) {
-                        let load = load_scene_file(&path);
+                        let load = load_scene_file_at(&path, frame.load(Ordering::Relaxed));
                         settle = Settle::new(load.files.clone());
                         // A watcher stopped during a long load reports nothing.
                         if !stop_.load(Ordering::Relaxed) {
@@ -161,9 +162,10 @@ mod tests {
             )
         };
         std::fs::write(&path, good(1.0)).unwrap();
-        let first = load_scene_file(&path);
+        let first = prism::scene::load_scene_file(&path);
         let (tx, rx) = channel();
-        let _watcher = Watcher::spawn(path.clone(), first.files, move |load| {
+        let frame = Arc::new(AtomicU32::new(0));
+        let _watcher = Watcher::spawn(path.clone(), first.files, frame, move |load| {
             let _ = tx.send(load);
         })
         .unwrap();

@@ -46,3 +46,18 @@ quit_with_ctrl_q() {
     done
     if kill -0 "$pid" 2>/dev/null; then echo "viewer did not quit on Ctrl+Q"; exit 1; fi
 }
+
+# wait_for_after MARKER TEXT SECONDS: until a line with TEXT follows the last line with
+# MARKER in the viewer's log (TEXT seen since MARKER), or prints the log and exits.
+wait_for_after() {
+    for _ in $(seq $(($3 * 10))); do
+        if awk -v m="$1" -v t="$2" 'index($0, m) { seen = 1; found = 0 }
+                                    seen && index($0, t) { found = 1 }
+                                    END { exit !found }' "$log"; then
+            return 0
+        fi
+        if ! kill -0 "$pid" 2>/dev/null; then echo "viewer died:"; cat "$log"; exit 1; fi
+        sleep 0.1
+    done
+    echo "timed out waiting for '$2' after '$1':"; cat "$log"; exit 1
+}
