@@ -8,12 +8,7 @@ set -euo pipefail
 . "$(dirname "$0")/lib.sh"
 scene=$work/scene.toml
 
-"$prism" view "$scene" --width 320 --height 240 --screenshot-dir "$work/shots" >"$log" 2>&1 &
-pid=$!
-trap 'kill $pid 2>/dev/null || true' EXIT
-
-find_window
-xdotool windowfocus --sync "$window"
+start_viewer "$scene" --width 320 --height 240 --screenshot-dir "$work/shots"
 wait_for "did not load" 1 30
 # The empty window converges at once; then it is on screen.
 wait_for "converged" 1 60

@@ -10,12 +10,7 @@ set -euo pipefail
 # shellcheck source=lib.sh
 . "$(dirname "$0")/lib.sh"
 
-"$prism" view --width 320 --height 240 --aa 2 --screenshot-dir "$work/shots" >"$log" 2>&1 &
-pid=$!
-trap 'kill $pid 2>/dev/null || true' EXIT
-
-find_window
-xdotool windowfocus --sync "$window"
+start_viewer --width 320 --height 240 --aa 2 --screenshot-dir "$work/shots"
 
 wait_for "converged" 1 120
 xdotool key --window "$window" F12

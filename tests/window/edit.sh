@@ -10,18 +10,13 @@ set -euo pipefail
 . "$(dirname "$0")/lib.sh"
 scene=$work/scene.toml
 
-"$prism" view "$scene" --width 320 --height 700 --screenshot-dir "$work/shots" >"$log" 2>&1 &
-pid=$!
-trap 'kill $pid 2>/dev/null || true' EXIT
-
 # shot N: a screenshot with F12, the Nth of the run.
 shot() {
     xdotool key --window "$window" F12
     wait_for "saved .*\.png" "$1" 30
 }
 
-find_window
-xdotool windowfocus --sync "$window"
+start_viewer "$scene" --width 320 --height 700 --screenshot-dir "$work/shots"
 wait_for "converged" 1 120
 shot 1
 

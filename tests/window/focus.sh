@@ -8,12 +8,7 @@ set -euo pipefail
 # shellcheck source=lib.sh
 . "$(dirname "$0")/lib.sh"
 
-"$prism" view "$work/lens.toml" --width 200 --height 200 --screenshot-dir "$work/shots" >"$log" 2>&1 &
-pid=$!
-trap 'kill $pid 2>/dev/null || true' EXIT
-
-find_window
-xdotool windowfocus --sync "$window"
+start_viewer "$work/lens.toml" --width 200 --height 200 --screenshot-dir "$work/shots"
 wait_for "converged" 1 120
 xdotool key --window "$window" F12
 wait_for "saved" 1 30

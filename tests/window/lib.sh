@@ -24,6 +24,16 @@ find_window() {
     echo "no window appeared:"; cat "$log"; exit 1
 }
 
+# start_viewer ARGS...: runs `prism view ARGS...` with its output in the log (as $pid,
+# killed when the script exits), waits for its window ($window) and focuses it.
+start_viewer() {
+    "$prism" view "$@" >"$log" 2>&1 &
+    pid=$!
+    trap 'kill $pid 2>/dev/null || true' EXIT
+    find_window
+    xdotool windowfocus --sync "$window"
+}
+
 # wait_for TEXT COUNT SECONDS: until the viewer's log holds COUNT lines with TEXT (the
 # viewer runs as $pid), or prints the log and exits.
 wait_for() {
