@@ -89,7 +89,22 @@ fn camera_change_restarts_accumulation() {
     camera.yaw += 5.0;
     job.set_camera(camera);
     assert_eq!(job.passes_done(), 0);
-    assert!(job.accumulator().pixels.iter().all(|p| p.count == 0));
+    assert_eq!(job.rays_traced().total(), 0);
+    // The next pass replaces every sum: one subsample each, of the new view only.
+    job.step(&NEVER);
+    assert!(job.accumulator().pixels.iter().all(|p| p.count == 1));
+    let fresh = render::render(
+        job.scene().clone(),
+        camera,
+        RenderSettings::new(40, 30, 2),
+        |_, _| {},
+    );
+    while let PassOutcome::Finished(_) = job.step(&NEVER) {}
+    assert_eq!(
+        job.accumulator(),
+        fresh.accumulator(),
+        "as if it had never been elsewhere"
+    );
 }
 
 #[test]

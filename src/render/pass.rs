@@ -26,7 +26,8 @@ pub struct PassStats {
 }
 
 /// Adds subsample `pass` to every pixel of `window` (the frame's pixels that `acc` holds)
-/// whose `active` flag is set (all of them when `active` is None). Each pixel depends only on its own position and the pass index, so the result
+/// whose `active` flag is set (all of them when `active` is None); subsample 0 replaces
+/// whatever the sum held, so pass 0 needs no cleared accumulator. Each pixel depends only on its own position and the pass index, so the result
 /// is the same whatever the number of threads. Returns None if `cancelled()` turned true
 /// part-way, leaving the accumulator holding a partial pass.
 #[allow(clippy::too_many_arguments)]
@@ -87,6 +88,11 @@ pub fn render_pass(
                     } else {
                         sample.color.clamp(glam::Vec3::ZERO, glam::Vec3::ONE)
                     };
+                    if pass == 0 {
+                        // The first subsample of a pixel starts its sum: a restarted
+                        // render's old sums are replaced here, never cleared apart.
+                        *sum = super::accumulator::PixelSum::default();
+                    }
                     sum.add(color, sample.signature);
                     traced += 1;
                 }

@@ -46,7 +46,7 @@ pub struct ProgressiveRender {
     settled_before: Vec<bool>,
     active_count: usize,
     passes_done: u32,
-    /// The accumulator holds a partial pass and must be cleared before the next one.
+    /// The accumulator holds a partial pass: the next step restarts at pass 0.
     dirty: bool,
     rays_traced: RayCounts,
     seconds: f64,
@@ -90,9 +90,11 @@ impl ProgressiveRender {
         }
     }
 
-    /// Throws away all samples; the next step starts at pass 0.
+    /// Throws away all samples; the next step starts at pass 0. The sums are not cleared
+    /// here (for a large image that alone is tens of milliseconds of an edit's latency):
+    /// pass 0 writes every pixel's sum afresh, so until the next pass `accumulator()` still
+    /// holds the old ones.
     pub fn restart(&mut self) {
-        self.accumulator.clear();
         self.active.fill(true);
         self.settled_before.fill(false);
         self.active_count = self.active.len();
@@ -266,7 +268,8 @@ impl ProgressiveRender {
         std::borrow::Cow::Owned(self.accumulator.crop(inside))
     }
 
-    /// The sums so far, of the window's pixels.
+    /// The sums so far, of the window's pixels (after a restart, those before it until the
+    /// next pass replaces them).
     pub fn accumulator(&self) -> &Accumulator {
         &self.accumulator
     }
