@@ -130,7 +130,6 @@ struct Plan {
     settings: RenderSettings,
     region: PixelRect,
     placement: Option<Placement>,
-    tile: Option<u32>,
     options: OutputOptions,
 }
 
@@ -152,19 +151,25 @@ pub fn run(args: RenderArgs) -> Result<()> {
     }
     let pool = prism::render::thread_pool(args.threads.map(usize::from))
         .context("cannot start the worker threads")?;
+    // The tile's index names the files; its rows wait for the frame's size.
+    let tile = match &args.tile {
+        Some(text) => Some(PixelRect::parse_tile(text)?.0),
+        None => None,
+    };
     let mut load_seconds = Some(start.elapsed().as_secs_f64());
     for frame in frames {
+        let path = out.path(frame, tile);
+        // Checked before the frame is loaded: a farm's rerun skips what it has cheaply.
+        if args.skip_existing && path.exists() {
+            eprintln!("skipped {} (it exists)", path.display());
+            continue;
+        }
         let frame_start = Instant::now();
         let scene = source.frame(frame)?;
         let load = load_seconds.take().unwrap_or(0.0) + frame_start.elapsed().as_secs_f64();
         // Per frame: an animation may key the `[render]` table (its exposure, say).
         let plan = &make_plan(&args, &scene)?;
-        let path = out.path(frame, plan.tile);
-        if args.skip_existing && path.exists() {
-            eprintln!("skipped {} (it exists)", path.display());
-            continue;
-        }
-        let stats_path = stats_out.as_ref().map(|t| t.path(frame, plan.tile));
+        let stats_path = stats_out.as_ref().map(|t| t.path(frame, tile));
         let label = source.animation().map(|_| frame);
         render_frame(
             &args,
@@ -202,13 +207,13 @@ fn make_plan(args: &RenderArgs, scene: &Scene) -> Result<Plan> {
     }
     settings.validate()?;
     let (width, height) = (settings.width, settings.height);
-    let (region, tile) = match (&args.region, &args.tile) {
-        (Some(text), _) => (PixelRect::parse(text)?, None),
+    let region = match (&args.region, &args.tile) {
+        (Some(text), _) => PixelRect::parse(text)?,
         (None, Some(text)) => {
             let (index, count) = PixelRect::parse_tile(text)?;
-            (PixelRect::tile(index, count, width, height)?, Some(index))
+            PixelRect::tile(index, count, width, height)?
         }
-        (None, None) => (PixelRect::full(width, height), None),
+        (None, None) => PixelRect::full(width, height),
     };
     region.check_within(width, height)?;
     let placement = (!region.is_full(width, height)).then_some(Placement {
@@ -257,7 +262,6 @@ fn make_plan(args: &RenderArgs, scene: &Scene) -> Result<Plan> {
         settings,
         region,
         placement,
-        tile,
         options,
     })
 }
