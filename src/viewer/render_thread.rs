@@ -12,8 +12,20 @@ use std::sync::{Arc, Mutex, MutexGuard};
 use std::thread::JoinHandle;
 use std::time::Instant;
 
-/// While the camera moves, one ray per block of this many pixels on a side.
+/// While the camera moves, and before an edit's first full pass, one ray per block of at
+/// least this many pixels on a side.
 pub const PREVIEW_BLOCK: u32 = 4;
+
+/// A coarse preview traces at most about this many rays: on an image larger than 1024×768
+/// its blocks grow past `PREVIEW_BLOCK`, so that its cost (and an edit's wait for its
+/// first image) stays that of a 1024×768 one.
+pub const PREVIEW_RAYS: u32 = 1024 * 768 / (PREVIEW_BLOCK * PREVIEW_BLOCK);
+
+/// The side of a preview's blocks, in pixels, for a `width` × `height` image.
+pub fn preview_block(width: u32, height: u32) -> u32 {
+    let pixels = width as f64 * height as f64;
+    PREVIEW_BLOCK.max((pixels / PREVIEW_RAYS as f64).sqrt().ceil() as u32)
+}
 
 pub enum Request {
     /// The scene changed (an edit, already validated, an undo, a reload): geometry is
@@ -332,12 +344,13 @@ impl Worker {
         }
     }
 
-    /// One ray per PREVIEW_BLOCK² pixels, upscaled by repetition.
+    /// One ray per block of pixels (`preview_block`), upscaled by repetition.
     fn preview(&mut self, cancelled: &(dyn Fn() -> bool + Sync)) {
         let full = *self.job.settings();
+        let block = preview_block(full.width, full.height);
         let mut settings = full;
-        settings.width = full.width.div_ceil(PREVIEW_BLOCK);
-        settings.height = full.height.div_ceil(PREVIEW_BLOCK);
+        settings.width = full.width.div_ceil(block);
+        settings.height = full.height.div_ceil(block);
         settings.aa = 1;
         settings.adaptive = None;
         let mut coarse =
@@ -347,13 +360,18 @@ impl Worker {
         };
         let mut small = vec![0u8; (settings.width * settings.height * 4) as usize];
         coarse.accumulator().write_rgba8(&mut small);
-        let mut rgba = vec![0u8; (full.width * full.height * 4) as usize];
-        for y in 0..full.height {
-            let sy = y / PREVIEW_BLOCK;
-            for x in 0..full.width {
-                let s = ((sy * settings.width + x / PREVIEW_BLOCK) * 4) as usize;
-                let d = ((y * full.width + x) * 4) as usize;
-                rgba[d..d + 4].copy_from_slice(&small[s..s + 4]);
+        // Each coarse row is widened once, then repeated down its block.
+        let (w, sw) = (full.width as usize * 4, settings.width as usize * 4);
+        let mut rgba = vec![0u8; w * full.height as usize];
+        for (sy, rows) in rgba.chunks_mut(w * block as usize).enumerate() {
+            let coarse = &small[sy * sw..(sy + 1) * sw];
+            let (first, rest) = rows.split_at_mut(w);
+            for (x, px) in first.chunks_exact_mut(4).enumerate() {
+                let s = x / block as usize * 4;
+                px.copy_from_slice(&coarse[s..s + 4]);
+            }
+            for row in rest.chunks_mut(w) {
+                row.copy_from_slice(first);
             }
         }
         let status = Status {
@@ -490,5 +508,28 @@ fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
         s.clone()
     } else {
         "a panic with no message".into()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Up to 1024×768 a preview's blocks are PREVIEW_BLOCK pixels wide; past it they grow
+    /// so that the preview's rays stay about as many.
+    #[test]
+    fn preview_blocks_grow_with_the_image() {
+        for (w, h) in [(1, 1), (320, 240), (800, 600), (1024, 768)] {
+            assert_eq!(preview_block(w, h), PREVIEW_BLOCK, "{w}×{h}");
+        }
+        for (w, h) in [(1600, 1000), (3840, 2160), (16384, 16384)] {
+            let block = preview_block(w, h);
+            let rays = w.div_ceil(block) as u64 * h.div_ceil(block) as u64;
+            assert!(block > PREVIEW_BLOCK, "{w}×{h}");
+            assert!(
+                rays <= PREVIEW_RAYS as u64 * 11 / 10,
+                "{w}×{h}: {rays} rays"
+            );
+        }
     }
 }
