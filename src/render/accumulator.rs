@@ -102,11 +102,6 @@ impl Accumulator {
         }
     }
 
-    /// Empties every sum.
-    pub fn clear(&mut self) {
-        self.pixels.fill(PixelSum::default());
-    }
-
     /// The sums of the pixels in `rect` (in this image's coordinates, inside it).
     pub fn crop(&self, rect: super::PixelRect) -> Accumulator {
         assert!(rect.check_within(self.width, self.height).is_ok());

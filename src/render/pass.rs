@@ -27,8 +27,9 @@ pub struct PassStats {
 
 /// Adds subsample `pass` to every pixel of `window` (the frame's pixels that `acc` holds)
 /// whose `active` flag is set (all of them when `active` is None); subsample 0 replaces
-/// whatever the sum held, so pass 0 needs no cleared accumulator. Each pixel depends only on its own position and the pass index, so the result
-/// is the same whatever the number of threads. Returns None if `cancelled()` turned true
+/// whatever the sum held, so pass 0 needs no cleared accumulator. Each pixel depends only
+/// on its own position and the pass index, so the result is the same whatever the number
+/// of threads. Returns None if `cancelled()` turned true
 /// part-way, leaving the accumulator holding a partial pass.
 #[allow(clippy::too_many_arguments)]
 pub fn render_pass(

@@ -258,14 +258,7 @@ impl ProgressiveRender {
         if region == self.window {
             return std::borrow::Cow::Borrowed(&self.accumulator);
         }
-        let w = self.window;
-        let inside = PixelRect {
-            x0: region.x0 - w.x0,
-            y0: region.y0 - w.y0,
-            x1: region.x1 - w.x0,
-            y1: region.y1 - w.y0,
-        };
-        std::borrow::Cow::Owned(self.accumulator.crop(inside))
+        std::borrow::Cow::Owned(self.accumulator.crop(region.relative_to(self.window)))
     }
 
     /// The sums so far, of the window's pixels (after a restart, those before it until the

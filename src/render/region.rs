@@ -194,6 +194,17 @@ impl PixelRect {
         other.x0 >= self.x0 && other.y0 >= self.y0 && other.x1 <= self.x1 && other.y1 <= self.y1
     }
 
+    /// Its place inside `outer`, which contains it, in `outer`'s own coordinates.
+    pub fn relative_to(&self, outer: PixelRect) -> PixelRect {
+        debug_assert!(outer.contains(self));
+        PixelRect {
+            x0: self.x0 - outer.x0,
+            y0: self.y0 - outer.y0,
+            x1: self.x1 - outer.x0,
+            y1: self.y1 - outer.y0,
+        }
+    }
+
     /// Whether the two share a pixel.
     pub fn overlaps(&self, other: &Self) -> bool {
         self.x0 < other.x1 && other.x0 < self.x1 && self.y0 < other.y1 && other.y0 < self.y1
@@ -306,6 +317,8 @@ mod tests {
         let r = PixelRect::parse("1,10,5,20").unwrap();
         assert_eq!(r.grown(3, 6, 100), PixelRect::parse("0,7,6,23").unwrap());
         assert!(r.grown(3, 6, 100).contains(&r));
+        let outer = r.grown(3, 6, 100);
+        assert_eq!(r.relative_to(outer), PixelRect::parse("1,3,5,13").unwrap());
         assert!(r.overlaps(&PixelRect::parse("4,19,9,30").unwrap()));
         assert!(!r.overlaps(&PixelRect::parse("5,10,9,20").unwrap()));
     }

@@ -178,6 +178,8 @@ impl Animation {
             tracks: Vec::new(),
             document,
         };
+        // One copy to look targets up in (the lookup borrows the document mutably).
+        let mut lookup = animation.document.clone();
         for (i, track) in def.track.into_iter().enumerate() {
             let span = track.span();
             let item = format!("animation.track[{i}]");
@@ -200,8 +202,7 @@ impl Animation {
                 )));
             }
             // The target must exist now, so a typo is caught at load, not at some frame.
-            let mut document = animation.document.clone();
-            target_table(&mut document, &parsed.target)
+            target_table(&mut lookup, &parsed.target)
                 .map_err(|message| at(target_span.clone(), item.clone(), message))?;
             let mut parsed = parsed;
             parsed.place = canonical(&animation.document, &parsed.target);
