@@ -12,13 +12,16 @@ export XDG_RUNTIME_DIR=$work/xdg
 mkdir -p "$XDG_RUNTIME_DIR"
 chmod 700 "$XDG_RUNTIME_DIR"
 
-# find_window sets $window to the viewer's X window (waiting up to 30 s for it to appear),
-# or prints the log and exits.
+# find_window sets $window to the viewer's X window (waiting up to 60 s for it to appear:
+# on a loaded machine lavapipe can take long to start), or prints the log and exits.
 find_window() {
     window=""
-    for _ in $(seq 300); do
+    for _ in $(seq 600); do
         window=$(xdotool search --name '^prism$' 2>/dev/null | head -1 || true)
         [ -n "$window" ] && return 0
+        if [ -n "${pid:-}" ] && ! kill -0 "$pid" 2>/dev/null; then
+            echo "the viewer exited before its window appeared:"; cat "$log"; exit 1
+        fi
         sleep 0.1
     done
     echo "no window appeared:"; cat "$log"; exit 1
