@@ -50,6 +50,12 @@ pub fn number(v: f32) -> String {
     }
 }
 
+/// The f64 an f32 reads as when written with the fewest digits that read back as it (0.1f32
+/// is 0.1, not 0.10000000149011612): what a saved file says.
+pub fn shortest(v: f32) -> f64 {
+    format!("{v:?}").parse::<f64>().unwrap_or(v as f64)
+}
+
 /// `text` shown, in double quotes.
 pub fn quoted(text: &str) -> String {
     format!("\"{}\"", shown(text))

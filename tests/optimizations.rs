@@ -139,6 +139,7 @@ fn light_buffers_draw_the_image_the_bvh_draws() {
         let a = i as f32 * 0.7;
         beads.objects.push(SceneObject {
             casts_shadow: true,
+            placement: Default::default(),
             name: format!("bead {i}"),
             shape: ShapeDesc::Sphere {
                 center: Vec3::new(
@@ -199,6 +200,7 @@ fn rays_inside_isolated_solids_find_what_the_bvh_finds() {
     }
     variant.objects.push(SceneObject {
         casts_shadow: true,
+        placement: Default::default(),
         name: "bead".into(),
         shape: ShapeDesc::Sphere {
             center: Vec3::new(-9.0, -10.5, -60.0),

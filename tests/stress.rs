@@ -184,6 +184,7 @@ fn fixed_epsilon_fails_where_the_error_bound_holds() {
 fn invisible(eta: f32) -> SceneObject {
     SceneObject {
         casts_shadow: true,
+        placement: Default::default(),
         name: "invisible".into(),
         shape: ShapeDesc::Sphere {
             center: Vec3::new(-2.0, -3.0, -70.0),

@@ -10,6 +10,8 @@
 //! Needs xvfb-run, xdotool and ImageMagick (`.ci/run` installs them). Without them the test
 //! says so and passes, unless PRISM_REQUIRE_WINDOW_TEST is set, as it is in CI.
 
+#![cfg(feature = "viewer")]
+
 use prism::render::fraction_differing as differing;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -60,6 +62,37 @@ fn under_xvfb(script: &str, work: &Path) -> std::process::Output {
     out
 }
 
+/// What a window script left: its standard output and the viewer's log.
+struct Ran {
+    stdout: String,
+    log: String,
+}
+
+/// Runs tests/window/SCRIPT under Xvfb (`under_xvfb`) and asserts that it succeeded.
+fn run_script(script: &str, work: &Path) -> Ran {
+    let out = under_xvfb(script, work);
+    let ran = Ran {
+        stdout: String::from_utf8_lossy(&out.stdout).into_owned(),
+        log: std::fs::read_to_string(work.join("viewer.log")).unwrap_or_default(),
+    };
+    assert!(
+        out.status.success(),
+        "{script} failed\nstdout: {}\nstderr: {}\nviewer log: {}",
+        ran.stdout,
+        String::from_utf8_lossy(&out.stderr),
+        ran.log
+    );
+    ran
+}
+
+/// `prism render` of the scene TEXT, written to WORK/NAME, at the edit scripts' window size.
+fn render_text(work: &Path, name: &str, text: &str) -> image::RgbImage {
+    let path = work.join(name);
+    std::fs::write(&path, text).unwrap();
+    let path = path.to_string_lossy().into_owned();
+    render_headless(work, &[&path, "--width", "320", "--height", "700"])
+}
+
 /// How many strongly red pixels (the panel's error text) the screenshot at `path` has in
 /// the panel's top `rows` rows.
 fn red_pixels(path: &Path, rows: u32) -> usize {
@@ -107,21 +140,13 @@ fn window_tools() -> bool {
     true
 }
 
-#[cfg(feature = "viewer")]
 #[test]
 fn viewer_window_end_to_end() {
     if !window_tools() {
         return;
     }
     let work = tempfile::tempdir().unwrap();
-    let out = under_xvfb("e2e.sh", work.path());
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    let log = std::fs::read_to_string(work.path().join("viewer.log")).unwrap_or_default();
-    assert!(
-        out.status.success(),
-        "e2e.sh failed\nstdout: {stdout}\nstderr: {stderr}\nviewer log: {log}"
-    );
+    let Ran { stdout, log } = run_script("e2e.sh", work.path());
     assert!(stdout.contains("viewer exited cleanly"), "{stdout}");
 
     let taken = shots(&work.path().join("shots"));
@@ -182,20 +207,13 @@ fn viewer_window_end_to_end() {
     assert!(!log.contains("panicked"), "{log}");
 }
 
-#[cfg(feature = "viewer")]
 #[test]
 fn a_panic_in_the_render_thread_is_shown_and_reported() {
     if !window_tools() {
         return;
     }
     let work = tempfile::tempdir().unwrap();
-    let out = under_xvfb("panic.sh", work.path());
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    let log = std::fs::read_to_string(work.path().join("viewer.log")).unwrap_or_default();
-    assert!(
-        out.status.success(),
-        "panic.sh failed\n{stdout}\nviewer log: {log}"
-    );
+    let Ran { stdout, log } = run_script("panic.sh", work.path());
     assert!(stdout.contains("viewer exited with 1"), "{stdout}\n{log}");
     assert!(log.contains("PRISM_INJECT_PANIC"), "{log}");
     // The panel shows the failure in red: some strongly red pixels in the panel.
@@ -216,7 +234,6 @@ const LENS_SCENE: &str = "[camera]\neye = [0, 0, 0]\ndirection = [0, 0, -1]\nfov
 /// tests/window/focus.sh: with an aperture, a click on the image focuses the lens on what
 /// lies under the cursor. The viewer reports the distance (the near sphere's front, 4 units
 /// along the axis), and the refocused image is what `prism render --focus-distance 4` draws.
-#[cfg(feature = "viewer")]
 #[test]
 fn a_click_focuses_the_lens_on_what_is_under_the_cursor() {
     if !window_tools() {
@@ -225,13 +242,7 @@ fn a_click_focuses_the_lens_on_what_is_under_the_cursor() {
     let work = tempfile::tempdir().unwrap();
     let scene = work.path().join("lens.toml");
     std::fs::write(&scene, LENS_SCENE).unwrap();
-    let out = under_xvfb("focus.sh", work.path());
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    let log = std::fs::read_to_string(work.path().join("viewer.log")).unwrap_or_default();
-    assert!(
-        out.status.success(),
-        "focus.sh failed\n{stdout}\nviewer log: {log}"
-    );
+    let log = run_script("focus.sh", work.path()).log;
     let focused: f32 = log
         .lines()
         .find_map(|l| l.strip_prefix("prism: focused at "))
@@ -327,7 +338,6 @@ material = \"floor\"
 /// is picked up without a key press; a broken edit shows the error, keeps the last good
 /// image and the window; the fix brings the scene back. Each screenshot equals `prism
 /// render` of the file it should show.
-#[cfg(feature = "viewer")]
 #[test]
 fn picking_editing_saving_and_reloading_in_the_window() {
     if !window_tools() {
@@ -336,13 +346,7 @@ fn picking_editing_saving_and_reloading_in_the_window() {
     let work = tempfile::tempdir().unwrap();
     let scene = work.path().join("scene.toml");
     std::fs::write(&scene, EDIT_SCENE).unwrap();
-    let out = under_xvfb("edit.sh", work.path());
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    let log = std::fs::read_to_string(work.path().join("viewer.log")).unwrap_or_default();
-    assert!(
-        out.status.success(),
-        "edit.sh failed\n{stdout}\nviewer log: {log}"
-    );
+    let log = run_script("edit.sh", work.path()).log;
     assert!(log.contains("prism: selected left"), "{log}");
     assert!(
         log.contains("scene.toml:32") && log.contains("`radius` must be greater than zero"),
@@ -353,12 +357,7 @@ fn picking_editing_saving_and_reloading_in_the_window() {
     assert_eq!(taken.len(), 6, "{taken:?}");
     let shot = |i: usize| image::open(&taken[i]).unwrap().into_rgb8();
     // `prism render` of a variant of the scene, at the window's size.
-    let render = |name: &str, text: &str| {
-        let path = work.path().join(name);
-        std::fs::write(&path, text).unwrap();
-        let path = path.to_string_lossy().into_owned();
-        render_headless(work.path(), &[&path, "--width", "320", "--height", "700"])
-    };
+    let render = |name: &str, text: &str| render_text(work.path(), name, text);
     let original = render("original.toml", EDIT_SCENE);
     let green = EDIT_SCENE.replace("[0.8, 0.15, 0.1]", "[0.8, 0.9, 0.1]");
     let edited = render("edited.toml", &green);
@@ -415,10 +414,51 @@ fn picking_editing_saving_and_reloading_in_the_window() {
     );
 }
 
+/// tests/window/transform.sh: the selection's translate, rotate and scale rows place it as
+/// the file with those values does; the save writes them and nothing else of the entry,
+/// and three undos bring the scene back.
+#[test]
+fn the_transform_rows_place_the_selection() {
+    if !window_tools() {
+        return;
+    }
+    let work = tempfile::tempdir().unwrap();
+    std::fs::write(work.path().join("scene.toml"), EDIT_SCENE).unwrap();
+    let log = run_script("transform.sh", work.path()).log;
+    assert!(!log.contains("panicked"), "{log}");
+    let taken = shots(&work.path().join("shots"));
+    assert_eq!(taken.len(), 2, "{taken:?}");
+    let shot = |i: usize| image::open(&taken[i]).unwrap().into_rgb8();
+    let render = |name: &str, text: &str| render_text(work.path(), name, text);
+    // The right sphere's entry with the values typed, written by hand.
+    let right = "radius = 1  # right\nmaterial = \"blue\"\n";
+    let placed = EDIT_SCENE.replace(
+        right,
+        &format!("{right}translate = [0.5, 0, 0]\nrotate = [0, 0, 20]\nscale = [1, 0.5, 1]\n"),
+    );
+    assert_ne!(placed, EDIT_SCENE);
+    let expected = render("placed.toml", &placed);
+    let original = render("original.toml", EDIT_SCENE);
+    assert!(differing(&expected, &original, 0) > 0.01, "the edits show");
+    assert_eq!(differing(&shot(0), &expected, 0), 0.0, "the placed sphere");
+    let saved = std::fs::read_to_string(work.path().join("saved.toml")).unwrap();
+    for line in [
+        "translate = [0.5, 0.0, 0.0]",
+        "rotate = [0.0, 0.0, 20.0]",
+        "scale = [1.0, 0.5, 1.0]",
+        "radius = 1  # right",
+        "position = [5, 8, 6]   # the only light",
+    ] {
+        assert!(saved.contains(line), "{line} not in\n{saved}");
+    }
+    assert_eq!(saved.matches("translate").count(), 1, "{saved}");
+    assert_eq!(differing(&render("saved.toml", &saved), &expected, 0), 0.0);
+    assert_eq!(differing(&shot(1), &original, 0), 0.0, "after three undos");
+}
+
 /// tests/window/broken_start.sh: a scene with an error at start opens the window anyway,
 /// with the error (file, line, field) in red in the panel; fixing the file shows the scene,
 /// as `prism render` draws it.
-#[cfg(feature = "viewer")]
 #[test]
 fn a_scene_that_fails_at_start_opens_the_window_with_its_error() {
     if !window_tools() {
@@ -428,13 +468,7 @@ fn a_scene_that_fails_at_start_opens_the_window_with_its_error() {
     let scene = work.path().join("scene.toml");
     let good = EDIT_SCENE.replace("radius = 1  # right", "radius = 1");
     std::fs::write(&scene, good.replacen("radius = 1\n", "radius = -1\n", 1)).unwrap();
-    let out = under_xvfb("broken_start.sh", work.path());
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    let log = std::fs::read_to_string(work.path().join("viewer.log")).unwrap_or_default();
-    assert!(
-        out.status.success(),
-        "broken_start.sh failed\n{stdout}\nviewer log: {log}"
-    );
+    let log = run_script("broken_start.sh", work.path()).log;
     assert!(
         log.contains("scene.toml:26") && log.contains("`radius` must be greater than zero"),
         "{log}"
@@ -457,7 +491,6 @@ fn a_scene_that_fails_at_start_opens_the_window_with_its_error() {
 /// tests/window/animation.sh: the panel's frame row steps through an animated scene (the
 /// turntable): three clicks of ">" show frame 3, a typed 40 shows frame 40, each as
 /// `prism render --frame N` draws it.
-#[cfg(feature = "viewer")]
 #[test]
 fn the_frame_row_steps_through_an_animation() {
     if !window_tools() {
@@ -472,13 +505,8 @@ fn the_frame_row_steps_through_an_animation() {
     );
     let scene = work.path().join("scene.toml");
     std::fs::write(&scene, text).unwrap();
-    let out = under_xvfb("animation.sh", work.path());
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    let log = std::fs::read_to_string(work.path().join("viewer.log")).unwrap_or_default();
-    assert!(
-        out.status.success(),
-        "animation.sh failed\n{stdout}\nviewer log: {log}"
-    );
+    let log = run_script("animation.sh", work.path()).log;
+    assert!(!log.contains("panicked"), "{log}");
     let taken = shots(&work.path().join("shots"));
     assert_eq!(taken.len(), 2, "{taken:?}");
     let scene = scene.to_string_lossy().into_owned();

@@ -485,6 +485,7 @@ mod tests {
         let material = template.objects[0].material.clone();
         let sphere = |center: Vec3| SceneObject {
             casts_shadow: true,
+            placement: Default::default(),
             name: "s".into(),
             shape: ShapeDesc::Sphere {
                 center,

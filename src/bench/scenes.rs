@@ -28,6 +28,7 @@ pub fn sphere_field(n: usize) -> Scene {
             );
             SceneObject {
                 casts_shadow: true,
+                placement: Default::default(),
                 name: format!("sphere {i}"),
                 shape: ShapeDesc::Sphere {
                     center,
@@ -44,6 +45,7 @@ pub fn sphere_field(n: usize) -> Scene {
     let half = side * 0.6;
     objects.push(SceneObject {
         casts_shadow: true,
+        placement: Default::default(),
         name: "floor".into(),
         shape: ShapeDesc::Polygon {
             vertices: vec![

@@ -75,6 +75,37 @@ pub struct SceneObject {
     /// Whether it blocks light on its way to other surfaces (false: a lamp's bulb that
     /// does not shadow its own light). Its own surface is shaded either way.
     pub casts_shadow: bool,
+    /// How its entry in the scene file places it (`shape` is already placed): what an
+    /// editor shows and changes, and what a save writes back.
+    pub placement: ObjectPlacement,
+}
+
+/// An entry's `translate`, `rotate` and `scale` as the scene file writes them: scale, then
+/// turn about x, then y, then z (degrees, right-handed, as POV-Ray's `rotate`), then move,
+/// all about the world's origin. Identity where the entry gives none.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ObjectPlacement {
+    /// The move, in world units.
+    pub translate: DVec3,
+    /// The turns about x, y and z, in degrees (f32, as the file reads them).
+    pub rotate: Vec3,
+    /// The factor along each axis.
+    pub scale: DVec3,
+}
+
+impl ObjectPlacement {
+    /// No scale, turn or move.
+    pub const IDENTITY: ObjectPlacement = ObjectPlacement {
+        translate: DVec3::ZERO,
+        rotate: Vec3::ZERO,
+        scale: DVec3::ONE,
+    };
+}
+
+impl Default for ObjectPlacement {
+    fn default() -> Self {
+        Self::IDENTITY
+    }
 }
 
 /// Every kind of shape a scene file describes (a closed set).
@@ -411,6 +442,7 @@ impl Scene {
             object.material.texture = object.material.texture.scaled(scale);
             // Absorption is per unit length: a larger object absorbs as much over its length.
             object.material.absorption /= scale;
+            // `placement` stays the file's: this scene is a test's variant, never saved.
         }
         scene
     }

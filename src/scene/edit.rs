@@ -1,13 +1,16 @@
 //! Changes to a loaded scene from outside the file (the viewer's sliders), checked like the
 //! file itself: a bad value is refused with a message, never rendered.
 
-use super::description::Scene;
+use super::description::{ObjectPlacement, Scene};
+use super::error::SceneError;
+use super::file::LoadedScene;
 use crate::appearance::{Background, Falloff, LightKind, Material, SpotCone, Texture};
 use crate::camera::Camera;
 use crate::limits::{
     DEPTH, ETA, FRACTION, MAX_COORDINATE, MAX_EXTINCTION, MAX_LIGHT_INTENSITY, MAX_PHONG_FACTOR,
     MAX_RADIANCE, MAX_SHININESS, MIN_LENGTH, REFLECTANCE, ROUGHNESS, SPOT_ANGLE,
 };
+use crate::messages::shortest;
 use glam::Vec3;
 use std::ops::RangeInclusive;
 use thiserror::Error;
@@ -40,6 +43,15 @@ pub enum EditError {
         object: String,
         /// The field at fault.
         field: &'static str,
+        /// What is wrong.
+        message: String,
+    },
+    /// A placement (`translate`, `rotate`, `scale`) that the scene file would refuse: the
+    /// entry, and what is wrong.
+    #[error("{item}: {message}")]
+    Placement {
+        /// The entry, as a load's messages name it (`spheres[2] "ball"`).
+        item: String,
         /// What is wrong.
         message: String,
     },
@@ -338,6 +350,39 @@ impl Scene {
             });
         }
         o.shape = moved;
+        // As a save writes the move: the offset with the fewest digits that read back.
+        o.placement.translate += glam::DVec3::from(offset.to_array().map(shortest));
+        Ok(())
+    }
+
+    /// Places object `object`'s entry in the scene file by `placement` (its `translate`,
+    /// `rotate` and `scale`), as `loaded`, the load this scene comes from, would with those
+    /// values: the same shapes, checked by the same rules. A mesh entry's parts move
+    /// together.
+    pub fn place_object(
+        &mut self,
+        loaded: &LoadedScene,
+        object: usize,
+        placement: ObjectPlacement,
+    ) -> Result<(), EditError> {
+        if object >= self.objects.len() {
+            return Err(EditError::NoSuchObject(object));
+        }
+        let placed = loaded
+            .placed_entry(self, object, &placement)
+            .map_err(|e| match e {
+                SceneError::Invalid { item, message, .. } => EditError::Placement { item, message },
+                other => EditError::Placement {
+                    item: self.objects[object].name.clone(),
+                    message: other.to_string(),
+                },
+            })?
+            .ok_or(EditError::NoSuchObject(object))?;
+        for (i, shape) in placed.shapes {
+            let o = &mut self.objects[i];
+            o.shape = shape;
+            o.placement = placed.placement;
+        }
         Ok(())
     }
 

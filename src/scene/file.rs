@@ -1,6 +1,7 @@
 //! The TOML scene format (documented in docs/scene-format.md): parsing, and validation that
 //! names the file, the line and the field of every problem.
 
+mod entry;
 mod meshes;
 mod placement;
 mod solids;
@@ -14,6 +15,7 @@ use crate::appearance::{ImageTexture, Texture, TextureError, UvTransform};
 use crate::camera::Camera;
 use crate::limits;
 use crate::messages::{number, quoted};
+use entry::{EntryDef, entry_label};
 use glam::Vec3;
 use placement::Placement;
 use serde::Deserialize;
@@ -929,17 +931,12 @@ impl Validator<'_> {
         let mut add = |kind: &'static str,
                        i: usize,
                        span: Range<usize>,
-                       name: &Option<String>,
-                       material_name: &Option<String>,
-                       shadow: Option<bool>,
+                       d: &dyn EntryDef,
                        shape: &dyn Fn(&Item) -> Result<ShapeDesc, SceneError>|
          -> Result<(), SceneError> {
-            let label = match name {
-                Some(n) => format!("{kind}[{i}] {}", quoted(n)),
-                None => format!("{kind}[{i}]"),
-            };
+            let label = entry_label(kind, i, d.name());
             let at = Item { span, name: &label };
-            let material = match material_name {
+            let material = match d.material() {
                 None => Material::default(),
                 Some(m) => materials.get(m).cloned().ok_or_else(|| {
                     self.field_error(
@@ -949,178 +946,46 @@ impl Validator<'_> {
                     )
                 })?,
             };
+            let shape = shape(&at)?;
+            let (translate, rotate, scale) = d.placement();
             objects.push(SceneObject {
-                name: name.clone().unwrap_or_else(|| format!("{kind} {i}")),
-                shape: shape(&at)?,
+                name: d
+                    .name()
+                    .map_or_else(|| format!("{kind} {i}"), str::to_string),
+                shape,
                 material,
-                casts_shadow: shadow.unwrap_or(true),
+                casts_shadow: d.shadow().unwrap_or(true),
+                placement: self.placement(&at, translate, rotate, scale)?.written(),
             });
             origins.push(ObjectOrigin {
                 table: kind,
                 index: i,
-                material: material_name.clone(),
+                material: d.material().map(str::to_string),
             });
             Ok(())
         };
-        for (i, s) in file.spheres.iter().enumerate() {
-            let d = s.get_ref();
-            add(
-                "spheres",
-                i,
-                s.span(),
-                &d.name,
-                &d.material,
-                d.shadow,
-                &|at| {
-                    let placement = self.placement(at, d.translate, d.rotate, d.scale.as_ref())?;
-                    match placement.uniform_scale() {
-                        Some(s) => Ok(ShapeDesc::Sphere {
-                            center: self.position(at, "center", placement.point(d.center))?,
-                            radius: self.length(at, "radius", (d.radius as f64 * s) as f32)?,
-                        }),
-                        None => {
-                            let sphere = ShapeDesc::Sphere {
-                                center: self.position(at, "center", d.center)?,
-                                radius: self.length(at, "radius", d.radius)?,
-                            };
-                            self.transformed(at, sphere, &placement)
-                        }
-                    }
-                },
-            )?;
-        }
-        for (i, c) in file.cylinders.iter().enumerate() {
-            let d = c.get_ref();
-            add(
-                "cylinders",
-                i,
-                c.span(),
-                &d.name,
-                &d.material,
-                d.shadow,
-                &|at| {
-                    let placement = self.placement(at, d.translate, d.rotate, d.scale.as_ref())?;
-                    let upright = placement.upright_scale();
-                    let (a, b) = upright.unwrap_or((1.0, 1.0));
-                    let base = if upright.is_some() {
-                        placement.point(d.base)
-                    } else {
-                        d.base
-                    };
-                    let relative_base = self.position(at, "base", base)?;
-                    let height = self.length(at, "height", (d.height as f64 * b) as f32)?;
-                    // The top cap is a position too.
-                    let mut top = base;
-                    top[1] += height as f64;
-                    self.position(at, "height", top)?;
-                    let cylinder = ShapeDesc::Cylinder {
-                        base: relative_base,
-                        radius: self.length(at, "radius", (d.radius as f64 * a) as f32)?,
-                        height,
-                        caps: d.caps.unwrap_or(true),
-                    };
-                    match upright {
-                        Some(_) => Ok(cylinder),
-                        None => self.transformed(at, cylinder, &placement),
-                    }
-                },
-            )?;
-        }
-        for (i, p) in file.polygons.iter().enumerate() {
-            let d = p.get_ref();
-            add(
-                "polygons",
-                i,
-                p.span(),
-                &d.name,
-                &d.material,
-                d.shadow,
-                &|at| {
-                    let placement = self.placement(at, d.translate, d.rotate, d.scale.as_ref())?;
-                    let placed: Vec<P3> = d.vertices.iter().map(|&v| placement.point(v)).collect();
-                    let vertices = self.polygon(at, &placed)?;
-                    Ok(ShapeDesc::Polygon { vertices })
-                },
-            )?;
-        }
-        for (i, t) in file.triangles.iter().enumerate() {
-            let d = t.get_ref();
-            add(
-                "triangles",
-                i,
-                t.span(),
-                &d.name,
-                &d.material,
-                d.shadow,
-                &|at| {
-                    let placement = self.placement(at, d.translate, d.rotate, d.scale.as_ref())?;
-                    let v = self.polygon(at, &d.vertices.map(|v| placement.point(v)))?;
-                    Ok(ShapeDesc::Triangle {
-                        vertices: [v[0], v[1], v[2]],
-                    })
-                },
-            )?;
-        }
-        for (i, t) in file.tetrahedra.iter().enumerate() {
-            let d = t.get_ref();
-            add(
-                "tetrahedra",
-                i,
-                t.span(),
-                &d.name,
-                &d.material,
-                d.shadow,
-                &|at| {
-                    let placement = self.placement(at, d.translate, d.rotate, d.scale.as_ref())?;
-                    let v = self.vertices(at, &d.vertices.map(|v| placement.point(v)))?;
-                    if !has_volume(&v) {
-                        return Err(self.field_error(
-                            at,
-                            "vertices",
-                            "the four vertices lie in one plane (no volume)",
-                        ));
-                    }
-                    let faces = [[0, 1, 2], [0, 1, 3], [0, 2, 3], [1, 2, 3]];
-                    if !faces
-                        .iter()
-                        .all(|&[a, b, c]| representable(v[a], v[b], v[c]))
-                    {
-                        return Err(self.field_error(at, "vertices", TOO_SMALL));
-                    }
-                    Ok(ShapeDesc::Tetrahedron {
-                        vertices: [v[0], v[1], v[2], v[3]],
-                    })
-                },
-            )?;
-        }
-        macro_rules! solids {
+        macro_rules! entries {
             ($list:expr, $kind:literal, $read:ident) => {
                 for (i, item) in $list.iter().enumerate() {
                     let d = item.get_ref();
-                    add(
-                        $kind,
-                        i,
-                        item.span(),
-                        &d.name,
-                        &d.material,
-                        d.shadow,
-                        &|at| self.$read(at, d),
-                    )?;
+                    add($kind, i, item.span(), d, &|at| self.$read(at, d))?;
                 }
             };
         }
-        solids!(file.boxes, "boxes", cuboid);
-        solids!(file.discs, "discs", disc);
-        solids!(file.planes, "planes", plane);
-        solids!(file.cones, "cones", cone);
-        solids!(file.tori, "tori", torus);
+        entries!(file.spheres, "spheres", sphere);
+        entries!(file.cylinders, "cylinders", cylinder);
+        entries!(file.polygons, "polygons", polygon);
+        entries!(file.triangles, "triangles", triangle);
+        entries!(file.tetrahedra, "tetrahedra", tetrahedron);
+        entries!(file.boxes, "boxes", cuboid);
+        entries!(file.discs, "discs", disc);
+        entries!(file.planes, "planes", plane);
+        entries!(file.cones, "cones", cone);
+        entries!(file.tori, "tori", torus);
         let mut mesh_files = meshes::MeshFiles::default();
         for (i, m) in file.meshes.iter().enumerate() {
             let d = m.get_ref();
-            let label = match &d.name {
-                Some(n) => format!("meshes[{i}] {}", quoted(n)),
-                None => format!("meshes[{i}]"),
-            };
+            let label = entry_label("meshes", i, d.name());
             let at = Item {
                 span: m.span(),
                 name: &label,
@@ -1136,13 +1001,11 @@ impl Validator<'_> {
                 })?),
             };
             let placement = self.placement(&at, d.translate, d.rotate, d.scale.as_ref())?;
-            let transform = placement.model(self.origin).ok_or_else(|| {
-                self.field_error(&at, "scale", "the placement cannot be inverted")
-            })?;
+            let parts = self.mesh_objects(&at, d, material, &mut mesh_files, &mut images)?;
+            let transform =
+                self.mesh_transform(&at, parts.iter().map(|p| p.mesh.as_ref()), &placement)?;
             let name = d.name.clone().unwrap_or_else(|| format!("meshes {i}"));
-            for part in
-                self.mesh_objects(&at, d, material, &placement, &mut mesh_files, &mut images)?
-            {
+            for part in parts {
                 objects.push(SceneObject {
                     name: match &part.part {
                         Some(p) => format!("{name}/{p}"),
@@ -1154,6 +1017,7 @@ impl Validator<'_> {
                     },
                     material: part.material,
                     casts_shadow: d.shadow.unwrap_or(true),
+                    placement: placement.written(),
                 });
                 origins.push(ObjectOrigin {
                     table: "meshes",
@@ -1173,6 +1037,92 @@ impl Validator<'_> {
             objects,
         };
         Ok((scene, origins))
+    }
+
+    /// A `[[spheres]]` entry, placed.
+    fn sphere(&self, at: &Item, d: &SphereDef) -> Result<ShapeDesc, SceneError> {
+        let placement = self.placement(at, d.translate, d.rotate, d.scale.as_ref())?;
+        match placement.uniform_scale() {
+            Some(s) => Ok(ShapeDesc::Sphere {
+                center: self.position(at, "center", placement.point(d.center))?,
+                radius: self.length(at, "radius", (d.radius as f64 * s) as f32)?,
+            }),
+            None => {
+                let sphere = ShapeDesc::Sphere {
+                    center: self.position(at, "center", d.center)?,
+                    radius: self.length(at, "radius", d.radius)?,
+                };
+                self.transformed(at, sphere, &placement)
+            }
+        }
+    }
+
+    /// A `[[cylinders]]` entry, placed.
+    fn cylinder(&self, at: &Item, d: &CylinderDef) -> Result<ShapeDesc, SceneError> {
+        let placement = self.placement(at, d.translate, d.rotate, d.scale.as_ref())?;
+        let upright = placement.upright_scale();
+        let (a, b) = upright.unwrap_or((1.0, 1.0));
+        let base = if upright.is_some() {
+            placement.point(d.base)
+        } else {
+            d.base
+        };
+        let relative_base = self.position(at, "base", base)?;
+        let height = self.length(at, "height", (d.height as f64 * b) as f32)?;
+        // The top cap is a position too.
+        let mut top = base;
+        top[1] += height as f64;
+        self.position(at, "height", top)?;
+        let cylinder = ShapeDesc::Cylinder {
+            base: relative_base,
+            radius: self.length(at, "radius", (d.radius as f64 * a) as f32)?,
+            height,
+            caps: d.caps.unwrap_or(true),
+        };
+        match upright {
+            Some(_) => Ok(cylinder),
+            None => self.transformed(at, cylinder, &placement),
+        }
+    }
+
+    /// A `[[polygons]]` entry, placed.
+    fn polygon(&self, at: &Item, d: &PolygonDef) -> Result<ShapeDesc, SceneError> {
+        let placement = self.placement(at, d.translate, d.rotate, d.scale.as_ref())?;
+        let placed: Vec<P3> = d.vertices.iter().map(|&v| placement.point(v)).collect();
+        let vertices = self.flat_corners(at, &placed)?;
+        Ok(ShapeDesc::Polygon { vertices })
+    }
+
+    /// A `[[triangles]]` entry, placed.
+    fn triangle(&self, at: &Item, d: &TriangleDef) -> Result<ShapeDesc, SceneError> {
+        let placement = self.placement(at, d.translate, d.rotate, d.scale.as_ref())?;
+        let v = self.flat_corners(at, &d.vertices.map(|v| placement.point(v)))?;
+        Ok(ShapeDesc::Triangle {
+            vertices: [v[0], v[1], v[2]],
+        })
+    }
+
+    /// A `[[tetrahedra]]` entry, placed.
+    fn tetrahedron(&self, at: &Item, d: &TetrahedronDef) -> Result<ShapeDesc, SceneError> {
+        let placement = self.placement(at, d.translate, d.rotate, d.scale.as_ref())?;
+        let v = self.vertices(at, &d.vertices.map(|v| placement.point(v)))?;
+        if !has_volume(&v) {
+            return Err(self.field_error(
+                at,
+                "vertices",
+                "the four vertices lie in one plane (no volume)",
+            ));
+        }
+        let faces = [[0, 1, 2], [0, 1, 3], [0, 2, 3], [1, 2, 3]];
+        if !faces
+            .iter()
+            .all(|&[a, b, c]| representable(v[a], v[b], v[c]))
+        {
+            return Err(self.field_error(at, "vertices", TOO_SMALL));
+        }
+        Ok(ShapeDesc::Tetrahedron {
+            vertices: [v[0], v[1], v[2], v[3]],
+        })
     }
 
     /// `shape` (relative to the scene's origin) under `placement`, when its own parameters
@@ -1258,7 +1208,7 @@ impl Validator<'_> {
     }
 
     /// The corners of a flat convex shape (a polygon or a triangle), checked as one.
-    fn polygon(&self, at: &Item, vs: &[P3]) -> Result<Vec<Vec3>, SceneError> {
+    fn flat_corners(&self, at: &Item, vs: &[P3]) -> Result<Vec<Vec3>, SceneError> {
         let vertices = self.vertices(at, vs)?;
         check_polygon(&vertices).map_err(|m| self.field_error(at, "vertices", m))?;
         Ok(vertices)

@@ -19,7 +19,7 @@ mod spans;
 
 pub use animation::{Animation, Interpolation, Key, OBJECT_TABLES, SceneFrames, Track};
 pub use camera_table::camera_table;
-pub use description::{RenderDefaults, Scene, SceneObject, ShapeDesc};
+pub use description::{ObjectPlacement, RenderDefaults, Scene, SceneObject, ShapeDesc};
 pub use edit::{EditError, MaterialProblem, check_camera, check_material};
 pub use error::SceneError;
 pub use file::{

@@ -2,10 +2,11 @@
 //! the values that changed are rewritten; every other line, comment and blank keeps its
 //! place (`toml_edit` keeps the file's layout).
 
-use super::description::Scene;
+use super::description::{Scene, ShapeDesc};
 use super::file::LoadedScene;
 use crate::appearance::{Background, Falloff, Fog, FogKind, Light, LightKind, Material, Texture};
 use crate::camera::Camera;
+use crate::messages::shortest;
 use glam::{DVec3, Vec3};
 use std::collections::BTreeMap;
 use thiserror::Error;
@@ -50,7 +51,12 @@ pub fn saved_text(
     let same_parts = before.objects.len() == edited.objects.len()
         && before.lights.len() == edited.lights.len()
         && before.objects.iter().zip(&edited.objects).all(|(a, b)| {
-            a.name == b.name && std::mem::discriminant(&a.shape) == std::mem::discriminant(&b.shape)
+            // A placement edit may put a shape under a transform: the same kind still.
+            let kind = |s: &ShapeDesc| match s {
+                ShapeDesc::Transformed { shape, .. } => std::mem::discriminant(&**shape),
+                other => std::mem::discriminant(other),
+            };
+            a.name == b.name && kind(&a.shape) == kind(&b.shape)
         });
     if !same_parts || loaded.origins.len() != before.objects.len() {
         return Err(SaveError::Mismatch);
@@ -73,7 +79,7 @@ pub fn saved_text(
         }
     }
     write_materials(&mut doc, loaded, edited, &mut skipped)?;
-    write_moves(&mut doc, loaded, edited, &mut skipped)?;
+    write_placements(&mut doc, loaded, edited, &mut skipped)?;
     Ok(SavedText {
         text: doc.to_string(),
         skipped,
@@ -302,9 +308,10 @@ fn write_materials(
     Ok(())
 }
 
-/// Objects moved in the viewer: each entry's `translate` grows by the move. The parts of
-/// one mesh entry (one per MTL material) move together or not at all.
-fn write_moves(
+/// Objects placed anew in the viewer: each entry's `translate`, `rotate` and `scale` that
+/// changed are written. The parts of one mesh entry (one per MTL material) move together
+/// or not at all.
+fn write_placements(
     doc: &mut DocumentMut,
     loaded: &LoadedScene,
     edited: &Scene,
@@ -316,52 +323,40 @@ fn write_moves(
         entries.entry((o.table, o.index)).or_default().push(i);
     }
     for ((table, index), objects) in entries {
-        let offsets: Vec<Vec3> = objects
-            .iter()
-            .map(|&i| edited.objects[i].shape.origin() - before.objects[i].shape.origin())
-            .collect();
-        if objects
-            .iter()
-            .all(|&i| edited.objects[i].shape == before.objects[i].shape)
-        {
-            continue;
-        }
-        let offset = offsets[0];
-        let together = offsets.iter().all(|o| {
-            (*o - offset).abs().max_element() <= 1e-6 * offset.abs().max_element().max(1.0)
-        });
-        if !together {
+        let was = before.objects[objects[0]].placement;
+        let now = edited.objects[objects[0]].placement;
+        if objects.iter().any(|&i| edited.objects[i].placement != now) {
             skipped.push(format!(
-                "{table}[{index}]: its parts were moved apart, which one entry cannot say"
+                "{table}[{index}]: its parts were placed apart, which one entry cannot say"
             ));
             continue;
         }
+        if now == was {
+            continue;
+        }
         let entry = array_entry(doc, table, index)?;
-        let old = entry
-            .get("translate")
-            .and_then(Item::as_value)
-            .and_then(Value::as_array)
-            .map(|a| {
-                let n: Vec<f64> = a.iter().filter_map(as_number).collect();
-                if n.len() == 3 {
-                    [n[0], n[1], n[2]]
-                } else {
-                    [0.0; 3]
-                }
-            })
-            .unwrap_or([0.0; 3]);
-        let new = [
-            old[0] + shortest(offset.x),
-            old[1] + shortest(offset.y),
-            old[2] + shortest(offset.z),
-        ];
-        set(
-            entry,
-            "translate",
-            Value::Array(new.into_iter().map(Value::from).collect::<Array>()),
-        );
+        if now.translate != was.translate {
+            set(entry, "translate", doubles(now.translate.to_array()));
+        }
+        if now.rotate != was.rotate {
+            set(entry, "rotate", vector(now.rotate));
+        }
+        if now.scale != was.scale {
+            let s = now.scale;
+            let value = if s.x == s.y && s.y == s.z {
+                Value::from(s.x)
+            } else {
+                doubles(s.to_array())
+            };
+            set(entry, "scale", value);
+        }
     }
     Ok(())
+}
+
+/// Three f64s, as an array.
+fn doubles(v: [f64; 3]) -> Value {
+    Value::Array(v.into_iter().map(Value::from).collect::<Array>())
 }
 
 /// The `[materials.NAME]` entry, as a table to edit.
@@ -539,11 +534,6 @@ fn same_value(a: &Value, b: &Value) -> bool {
 /// A number of the file, float or integer.
 fn as_number(v: &Value) -> Option<f64> {
     v.as_float().or_else(|| v.as_integer().map(|i| i as f64))
-}
-
-/// The f64 with the fewest digits that reads back as `v`.
-fn shortest(v: f32) -> f64 {
-    format!("{v:?}").parse::<f64>().unwrap_or(v as f64)
 }
 
 /// An f32 written with the fewest digits that read back as the same f32.

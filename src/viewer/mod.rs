@@ -432,8 +432,22 @@ impl App {
     /// Sends what the panel changed to the render thread, and does what it asked.
     fn apply(&mut self, changes: panel::Changes) {
         let now = Instant::now();
-        let edited = !changes.edits.is_empty();
-        for (key, before) in changes.edits {
+        let mut edits = changes.edits;
+        if let Some((object, placement, field)) = changes.place
+            && let Some(loaded) = &self.document.loaded
+        {
+            // The entry is validated again with these values, as a load of the file would be.
+            let before = self.panel.scene.clone();
+            match self.panel.scene.place_object(loaded, object, placement) {
+                Ok(()) if self.panel.scene != before => {
+                    edits.push((EditKey(format!("object {object} {field}")), before))
+                }
+                Ok(()) => {}
+                Err(e) => self.panel.message = Some((e.to_string(), true)),
+            }
+        }
+        let edited = !edits.is_empty();
+        for (key, before) in edits {
             self.history.record(&before, key, now);
         }
         if edited {

@@ -12,9 +12,12 @@ use prism::camera::Camera;
 use prism::limits::{MAX_COORDINATE, MAX_PHONG_FACTOR, MAX_RADIANCE, MAX_SHININESS, MIN_LENGTH};
 use prism::render::{Legend, View};
 use prism::scene::check_camera;
-use prism::scene::{EditError, Scene};
+use prism::scene::{EditError, ObjectPlacement, Scene};
 use std::ops::RangeInclusive;
 use std::path::PathBuf;
+
+/// The largest turn the rotate fields take, in degrees either way (any turn is within one).
+const MAX_DEGREES: f32 = 360.0;
 
 /// Panel width in points.
 pub const PANEL_WIDTH: f32 = 300.0;
@@ -59,6 +62,9 @@ pub struct Changes {
     pub frame: Option<u32>,
     /// Show the image or a heat map.
     pub view: Option<View>,
+    /// Place an object's entry anew (its `translate`, `rotate`, `scale`), and which of the
+    /// three changed.
+    pub place: Option<(usize, ObjectPlacement, &'static str)>,
 }
 
 /// The file the viewer shows, as the panel reports it.
@@ -109,6 +115,8 @@ pub struct PanelState {
     plot_by_samples: bool,
     /// Whether a drag orbits the selection (else it turns the camera where it stands).
     pub orbit: bool,
+    /// Whether an even scale is shown per axis, to make it uneven.
+    scale_per_axis: bool,
 }
 
 impl PanelState {
@@ -130,6 +138,7 @@ impl PanelState {
             convergence: Vec::new(),
             plot_by_samples: false,
             orbit: false,
+            scale_per_axis: false,
         }
     }
 
@@ -334,15 +343,70 @@ impl PanelState {
             return;
         };
         ui.label(RichText::new(format!("Selected: {}", self.scene.objects[i].name)).strong());
-        // Where it is (its own origin, in world coordinates): a change moves it.
-        let origin = self.scene.origin;
-        let at = self.scene.objects[i].shape.origin();
-        let mut world = origin + at.as_dvec3();
-        if position_row(ui, "at", &mut world) {
-            let offset = (world - origin).as_vec3() - at;
-            self.edit(changes, format!("object {i} move"), |s| {
-                s.move_object(i, offset)
-            });
+        // Its entry's `translate`, `rotate` and `scale`, as the file has them.
+        let mut p = self.scene.objects[i].placement;
+        let before = p;
+        position_row(ui, "translate", &mut p.translate);
+        ui.horizontal(|ui| {
+            ui.label("rotate °").on_hover_text(
+                "The file's `rotate`: degrees about x, then y, then z, about the world's \
+                 origin, after the scale and before the move",
+            );
+            for (v, name) in [
+                (&mut p.rotate.x, "x "),
+                (&mut p.rotate.y, "y "),
+                (&mut p.rotate.z, "z "),
+            ] {
+                ui.add(
+                    DragValue::new(v)
+                        .range(-MAX_DEGREES..=MAX_DEGREES)
+                        // A file's 720 stays 720 until it is edited.
+                        .clamp_existing_to_range(false)
+                        .speed(0.5)
+                        .prefix(name),
+                );
+            }
+        });
+        ui.horizontal(|ui| {
+            ui.label("scale").on_hover_text(
+                "The file's `scale`: about the world's origin, before the turn and the move",
+            );
+            let (lo, hi) = (*prism::limits::SCALE.start(), *prism::limits::SCALE.end());
+            let even = p.scale.x == p.scale.y && p.scale.y == p.scale.z;
+            if even && !self.scale_per_axis {
+                let mut k = p.scale.x;
+                if ui
+                    .add(DragValue::new(&mut k).range(lo..=hi).speed(0.01))
+                    .changed()
+                {
+                    p.scale = DVec3::splat(k);
+                }
+            } else {
+                for (v, name) in [
+                    (&mut p.scale.x, "x "),
+                    (&mut p.scale.y, "y "),
+                    (&mut p.scale.z, "z "),
+                ] {
+                    ui.add(DragValue::new(v).range(lo..=hi).speed(0.01).prefix(name));
+                }
+            }
+            let mut per_axis = self.scale_per_axis || !even;
+            if ui
+                .add_enabled(even, egui::Checkbox::new(&mut per_axis, "per axis"))
+                .changed()
+            {
+                self.scale_per_axis = per_axis;
+            }
+        });
+        let field = if p.translate != before.translate {
+            "translate"
+        } else if p.rotate != before.rotate {
+            "rotate"
+        } else {
+            "scale"
+        };
+        if p != before {
+            changes.place = Some((i, p, field));
         }
         let mut m = self.scene.objects[i].material.clone();
         let before = m.clone();

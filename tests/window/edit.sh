@@ -10,12 +10,6 @@ set -euo pipefail
 . "$(dirname "$0")/lib.sh"
 scene=$work/scene.toml
 
-# shot N: a screenshot with F12, the Nth of the run.
-shot() {
-    xdotool key --window "$window" F12
-    wait_for "saved .*\.png" "$1" 30
-}
-
 start_viewer "$scene" --width 320 --height 700 --screenshot-dir "$work/shots"
 wait_for "converged" 1 120
 shot 1
@@ -28,7 +22,7 @@ wait_for "selected left" 1 30
 import -window root "$work/selected.png"
 
 # Its colour's green: a click on the number turns it into a text field.
-xdotool mousemove --window "$window" 182 264
+xdotool mousemove --window "$window" 182 306
 sleep 0.3
 xdotool click 1
 sleep 0.3

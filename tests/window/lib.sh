@@ -74,3 +74,9 @@ wait_for_after() {
     done
     echo "timed out waiting for '$2' after '$1':"; cat "$log"; exit 1
 }
+
+# shot N: a screenshot with F12, the Nth of the run, waiting up to 30 s for it to be saved.
+shot() {
+    xdotool key --window "$window" F12
+    wait_for "saved .*\.png" "$1" 30
+}

@@ -4,7 +4,7 @@
 use super::placement::Placement;
 use super::{Images, Item, MeshDef, Validator};
 use crate::appearance::{Material, Texture, UvTransform};
-use crate::geometry::Mesh;
+use crate::geometry::{Mesh, Transform};
 use crate::limits;
 use crate::messages::quoted;
 use crate::scene::error::SceneError;
@@ -76,7 +76,6 @@ impl Validator<'_> {
         at: &Item,
         d: &MeshDef,
         material: Option<&Material>,
-        placement: &Placement,
         files: &mut MeshFiles,
         images: &mut Images,
     ) -> Result<Vec<MeshObject>, SceneError> {
@@ -95,7 +94,6 @@ impl Validator<'_> {
         if material.is_none() && file.materials.is_none() {
             file.materials = Some(self.file_materials(at, &d.path, file, images)?);
         }
-        self.check_placed_bounds(at, &file.parts, placement)?;
         let several = file.parts.len() > 1;
         Ok(file
             .parts
@@ -113,15 +111,16 @@ impl Validator<'_> {
             .collect())
     }
 
-    /// The placed mesh must lie within `MAX_COORDINATE` of the camera, like every shape.
-    fn check_placed_bounds(
+    /// From the meshes' space to the scene's under `placement`: the placed meshes must lie
+    /// within `MAX_COORDINATE` of the camera, like every shape.
+    pub(super) fn mesh_transform<'m>(
         &self,
         at: &Item,
-        parts: &[LoadedPart],
+        meshes: impl IntoIterator<Item = &'m Mesh>,
         placement: &Placement,
-    ) -> Result<(), SceneError> {
-        for part in parts {
-            for p in part.mesh.bounds().corners() {
+    ) -> Result<Transform, SceneError> {
+        for mesh in meshes {
+            for p in mesh.bounds().corners() {
                 let p = p.as_dvec3();
                 let placed = DVec3::from(placement.point(p.to_array())) - self.origin;
                 if !(placed.is_finite() && placed.abs().max_element() <= limits::MAX_COORDINATE) {
@@ -137,7 +136,9 @@ impl Validator<'_> {
                 }
             }
         }
-        Ok(())
+        placement
+            .model(self.origin)
+            .ok_or_else(|| self.field_error(at, "scale", "the placement cannot be inverted"))
     }
 
     /// Reads and parses mesh file `rel`; the scene's meshes hold `triangles` already.

@@ -6,6 +6,7 @@ use super::{Item, P3, V3, Validator};
 use crate::geometry::Transform;
 use crate::limits;
 use crate::messages::number;
+use crate::scene::ObjectPlacement;
 use crate::scene::error::SceneError;
 use glam::{Affine3A, DMat3, DVec3, Mat3A, Vec3A};
 
@@ -15,6 +16,8 @@ pub(super) struct Placement {
     scale: DVec3,
     rotation: DMat3,
     translate: DVec3,
+    /// The values as the entry writes them.
+    written: ObjectPlacement,
 }
 
 impl Placement {
@@ -22,7 +25,20 @@ impl Placement {
         scale: DVec3::ONE,
         rotation: DMat3::IDENTITY,
         translate: DVec3::ZERO,
+        written: ObjectPlacement::IDENTITY,
     };
+
+    /// The entry's `translate`, `rotate` and `scale`, as written.
+    pub(super) fn written(&self) -> ObjectPlacement {
+        self.written
+    }
+
+    /// Whether it changes nothing (however it is written: a whole turn is none).
+    fn is_identity(&self) -> bool {
+        self.scale == DVec3::ONE
+            && self.rotation == DMat3::IDENTITY
+            && self.translate == DVec3::ZERO
+    }
 
     fn linear(&self) -> DMat3 {
         self.rotation * DMat3::from_diagonal(self.scale)
@@ -30,7 +46,7 @@ impl Placement {
 
     /// A world point, placed (exactly itself, signs of zero included, without a placement).
     pub(super) fn point(&self, p: P3) -> P3 {
-        if *self == Self::IDENTITY {
+        if self.is_identity() {
             return p;
         }
         (self.linear() * DVec3::from(p) + self.translate).to_array()
@@ -108,9 +124,12 @@ impl Validator<'_> {
                 ));
             }
             out.translate = t;
+            out.written.translate = t;
         }
         if let Some(r) = rotate {
-            let degrees = self.point(at, "rotate", r)?.as_dvec3();
+            let given = self.point(at, "rotate", r)?;
+            out.written.rotate = given;
+            let degrees = given.as_dvec3();
             // Whole turns are exact; the rest is taken in [0, 360) for precision.
             let turned = degrees.to_array().map(|d| d.rem_euclid(360.0));
             let [x, y, z] = turned.map(f64::to_radians);
@@ -156,6 +175,7 @@ impl Validator<'_> {
                 ));
             }
             out.scale = DVec3::from(factors);
+            out.written.scale = out.scale;
         }
         Ok(out)
     }

@@ -20,10 +20,10 @@ pub(super) struct BoxDef {
     max: P3,
     pub(super) material: Option<String>,
     pub(super) shadow: Option<bool>,
-    translate: Option<P3>,
-    rotate: Option<V3>,
+    pub(super) translate: Option<P3>,
+    pub(super) rotate: Option<V3>,
     /// A number or [sx, sy, sz].
-    scale: Option<toml::Value>,
+    pub(super) scale: Option<toml::Value>,
 }
 
 #[derive(Deserialize)]
@@ -35,10 +35,10 @@ pub(super) struct DiscDef {
     radius: f32,
     pub(super) material: Option<String>,
     pub(super) shadow: Option<bool>,
-    translate: Option<P3>,
-    rotate: Option<V3>,
+    pub(super) translate: Option<P3>,
+    pub(super) rotate: Option<V3>,
     /// A number or [sx, sy, sz].
-    scale: Option<toml::Value>,
+    pub(super) scale: Option<toml::Value>,
 }
 
 #[derive(Deserialize)]
@@ -49,10 +49,10 @@ pub(super) struct PlaneDef {
     normal: V3,
     pub(super) material: Option<String>,
     pub(super) shadow: Option<bool>,
-    translate: Option<P3>,
-    rotate: Option<V3>,
+    pub(super) translate: Option<P3>,
+    pub(super) rotate: Option<V3>,
     /// A number or [sx, sy, sz].
-    scale: Option<toml::Value>,
+    pub(super) scale: Option<toml::Value>,
 }
 
 #[derive(Deserialize)]
@@ -66,10 +66,10 @@ pub(super) struct ConeDef {
     caps: Option<bool>,
     pub(super) material: Option<String>,
     pub(super) shadow: Option<bool>,
-    translate: Option<P3>,
-    rotate: Option<V3>,
+    pub(super) translate: Option<P3>,
+    pub(super) rotate: Option<V3>,
     /// A number or [sx, sy, sz].
-    scale: Option<toml::Value>,
+    pub(super) scale: Option<toml::Value>,
 }
 
 #[derive(Deserialize)]
@@ -81,10 +81,10 @@ pub(super) struct TorusDef {
     minor_radius: f32,
     pub(super) material: Option<String>,
     pub(super) shadow: Option<bool>,
-    translate: Option<P3>,
-    rotate: Option<V3>,
+    pub(super) translate: Option<P3>,
+    pub(super) rotate: Option<V3>,
     /// A number or [sx, sy, sz].
-    scale: Option<toml::Value>,
+    pub(super) scale: Option<toml::Value>,
 }
 
 impl Validator<'_> {

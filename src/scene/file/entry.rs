@@ -1,0 +1,180 @@
+//! An object entry of the scene file (`[[spheres]]`, `[[meshes]]`, …): what every kind has
+//! (a name, a material, a shadow switch, a placement), and an entry validated again under
+//! another placement, as a load of the file with those values would validate it (the
+//! viewer's transform edits).
+
+use super::solids::{BoxDef, ConeDef, DiscDef, PlaneDef, TorusDef};
+use super::{
+    CylinderDef, Item, LoadedScene, MeshDef, P3, PolygonDef, SceneFile, SphereDef, TetrahedronDef,
+    TriangleDef, V3, Validator,
+};
+use crate::messages::quoted;
+use crate::scene::description::{ObjectPlacement, Scene, ShapeDesc};
+use crate::scene::error::SceneError;
+use crate::scene::spans::FieldSpans;
+use std::path::PathBuf;
+
+/// The fields every object entry has, whatever its shape.
+pub(super) trait EntryDef {
+    fn name(&self) -> Option<&str>;
+    fn material(&self) -> Option<&str>;
+    fn shadow(&self) -> Option<bool>;
+    /// Its `translate`, `rotate` and `scale`, as read.
+    fn placement(&self) -> (Option<P3>, Option<V3>, Option<&toml::Value>);
+    /// Gives it `p`'s `translate`, `rotate` and `scale` in place of its own.
+    fn set_placement(&mut self, p: &ObjectPlacement);
+}
+
+macro_rules! entry_defs {
+    ($($def:ty),*) => {$(
+        impl EntryDef for $def {
+            fn name(&self) -> Option<&str> {
+                self.name.as_deref()
+            }
+            fn material(&self) -> Option<&str> {
+                self.material.as_deref()
+            }
+            fn shadow(&self) -> Option<bool> {
+                self.shadow
+            }
+            fn placement(&self) -> (Option<P3>, Option<V3>, Option<&toml::Value>) {
+                (self.translate, self.rotate, self.scale.as_ref())
+            }
+            fn set_placement(&mut self, p: &ObjectPlacement) {
+                self.translate = Some(p.translate.to_array());
+                self.rotate = Some(p.rotate.to_array());
+                self.scale = Some(toml::Value::Array(
+                    p.scale.to_array().map(toml::Value::Float).to_vec(),
+                ));
+            }
+        }
+    )*};
+}
+
+entry_defs!(
+    SphereDef,
+    CylinderDef,
+    PolygonDef,
+    TriangleDef,
+    TetrahedronDef,
+    MeshDef,
+    BoxDef,
+    DiscDef,
+    PlaneDef,
+    ConeDef,
+    TorusDef
+);
+
+/// How messages name entry `i` of table `kind`: `spheres[2]`, or `spheres[2] "ball"`.
+pub(super) fn entry_label(kind: &str, i: usize, name: Option<&str>) -> String {
+    match name {
+        Some(n) => format!("{kind}[{i}] {}", quoted(n)),
+        None => format!("{kind}[{i}]"),
+    }
+}
+
+/// Object `object`'s entry placed anew: each object the entry makes (a mesh entry's every
+/// part), by its index in the scene, with its shape.
+pub(crate) struct PlacedEntry {
+    /// The objects and their shapes under the new placement.
+    pub(crate) shapes: Vec<(usize, ShapeDesc)>,
+    /// The placement, as the entry now writes it.
+    pub(crate) placement: ObjectPlacement,
+}
+
+impl LoadedScene {
+    /// The shapes object `object`'s entry makes when its `translate`, `rotate` and `scale`
+    /// are `placement`'s: exactly those a load of the file with these values would make,
+    /// checked by the same rules. `scene` is this load's scene, edited or not (a mesh's
+    /// parts keep the meshes it holds; no file is read).
+    pub(crate) fn placed_entry(
+        &self,
+        scene: &Scene,
+        object: usize,
+        placement: &ObjectPlacement,
+    ) -> Result<Option<PlacedEntry>, SceneError> {
+        let Some(origin) = self.origins.get(object) else {
+            return Ok(None);
+        };
+        // The file as this load validated it: an animated file's at its frame.
+        let source = match &self.animation {
+            Some(animation) => animation.source_at(self.frame),
+            None => self.source.clone(),
+        };
+        let Ok(mut file) = toml::from_str::<SceneFile>(&source) else {
+            return Ok(None);
+        };
+        let v = Validator {
+            path: PathBuf::new(),
+            source: &source,
+            spans: FieldSpans::new(&source),
+            assets: super::Assets::Embedded(&[]),
+            origin: glam::DVec3::from(file.camera.get_ref().eye),
+            reads: Default::default(),
+        };
+        let index = origin.index;
+        macro_rules! placed {
+            ($list:expr, $read:ident) => {{
+                let Some(item) = $list.get_mut(index) else {
+                    return Ok(None);
+                };
+                let span = item.span();
+                let d = item.get_mut();
+                d.set_placement(placement);
+                let label = entry_label(origin.table, index, d.name());
+                let at = Item { span, name: &label };
+                let shape = v.$read(&at, d)?;
+                let (t, r, s) = d.placement();
+                let written = v.placement(&at, t, r, s)?.written();
+                (vec![(object, shape)], written)
+            }};
+        }
+        let (shapes, written) = match origin.table {
+            "spheres" => placed!(file.spheres, sphere),
+            "cylinders" => placed!(file.cylinders, cylinder),
+            "polygons" => placed!(file.polygons, polygon),
+            "triangles" => placed!(file.triangles, triangle),
+            "tetrahedra" => placed!(file.tetrahedra, tetrahedron),
+            "boxes" => placed!(file.boxes, cuboid),
+            "discs" => placed!(file.discs, disc),
+            "planes" => placed!(file.planes, plane),
+            "cones" => placed!(file.cones, cone),
+            "tori" => placed!(file.tori, torus),
+            "meshes" => {
+                let Some(item) = file.meshes.get_mut(index) else {
+                    return Ok(None);
+                };
+                let span = item.span();
+                let d = item.get_mut();
+                d.set_placement(placement);
+                let label = entry_label("meshes", index, d.name());
+                let at = Item { span, name: &label };
+                let (t, r, s) = d.placement();
+                let placed = v.placement(&at, t, r, s)?;
+                // Every part of the entry, with the mesh it holds.
+                let parts: Vec<(usize, std::sync::Arc<crate::geometry::Mesh>)> = self
+                    .origins
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, o)| o.table == "meshes" && o.index == index)
+                    .filter_map(|(j, _)| match &scene.objects.get(j)?.shape {
+                        ShapeDesc::Mesh { mesh, .. } => Some((j, mesh.clone())),
+                        _ => None,
+                    })
+                    .collect();
+                let transform =
+                    v.mesh_transform(&at, parts.iter().map(|(_, m)| m.as_ref()), &placed)?;
+                let shapes = parts
+                    .into_iter()
+                    .map(|(j, mesh)| (j, ShapeDesc::Mesh { mesh, transform }))
+                    .collect();
+                (shapes, placed.written())
+            }
+            _ => return Ok(None),
+        };
+        Ok(Some(PlacedEntry {
+            shapes,
+            placement: written,
+        }))
+    }
+}
