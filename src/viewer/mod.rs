@@ -181,6 +181,7 @@ pub fn run(launch: Launch) -> Result<()> {
         dirty: true,
         last_present: Instant::now(),
         refresh_pending: false,
+        holding: false,
         modifiers: Default::default(),
         status: Status::default(),
         render_error: None,
@@ -239,6 +240,9 @@ struct App {
     last_present: Instant,
     /// An idle repaint was deferred; the event loop wakes for it at IDLE_REPAINT.
     refresh_pending: bool,
+    /// A frame was held for a change's image (`RenderThread::image_due`); the image's
+    /// wake, or the event loop at the deadline, draws it.
+    holding: bool,
     modifiers: winit::keyboard::ModifiersState,
     status: Status,
     /// The last failure of the render thread, reported again when the window closes.
@@ -734,9 +738,19 @@ impl App {
         event_loop.exit();
     }
 
-    /// Draws a frame, unless nothing changed and one was drawn within `IDLE_REPAINT` (a
-    /// deferred repaint then follows).
+    /// Draws a frame, unless the image of a change just sent is due (`image_due`), or
+    /// nothing changed and one was drawn within `IDLE_REPAINT` (a deferred repaint then
+    /// follows).
     fn on_redraw_requested(&mut self, event_loop: &ActiveEventLoop) {
+        if self
+            .gfx
+            .as_ref()
+            .is_some_and(|g| g.render.image_due().is_some())
+        {
+            // The image of a change is due: the frame waits for it (or its deadline).
+            self.holding = true;
+            return;
+        }
         let idle = !self.dirty && !self.input.moving() && self.status.converged;
         if idle && self.last_present.elapsed() < IDLE_REPAINT {
             self.refresh_pending = true;
@@ -909,9 +923,10 @@ impl ApplicationHandler<Wake> for App {
 
     fn new_events(&mut self, _: &ActiveEventLoop, cause: winit::event::StartCause) {
         if let winit::event::StartCause::ResumeTimeReached { .. } = cause
-            && self.refresh_pending
+            && (self.refresh_pending || self.holding)
         {
             self.refresh_pending = false;
+            self.holding = false;
             self.dirty = true;
             if let Some(g) = &self.gfx {
                 g.window.request_redraw();
@@ -975,17 +990,24 @@ impl ApplicationHandler<Wake> for App {
     }
 
     fn about_to_wait(&mut self, event_loop: &ActiveEventLoop) {
-        // Keep drawing while anything changes; sleep once the image has converged.
+        let due = self.gfx.as_ref().and_then(|g| g.render.image_due());
+        // Keep drawing while anything changes (but for a change's image, due soon); sleep
+        // once the image has converged.
         if let Some(g) = &self.gfx
+            && due.is_none()
             && (self.input.moving() || !self.status.converged)
         {
             self.dirty = true;
             g.window.request_redraw();
         }
-        event_loop.set_control_flow(if self.refresh_pending {
-            ControlFlow::WaitUntil(self.last_present + IDLE_REPAINT)
-        } else {
-            ControlFlow::Wait
+        let refresh = self
+            .refresh_pending
+            .then(|| self.last_present + IDLE_REPAINT);
+        let hold = due.filter(|_| self.holding);
+        event_loop.set_control_flow(match (refresh, hold) {
+            (Some(a), Some(b)) => ControlFlow::WaitUntil(a.min(b)),
+            (Some(t), None) | (None, Some(t)) => ControlFlow::WaitUntil(t),
+            (None, None) => ControlFlow::Wait,
         });
     }
 }

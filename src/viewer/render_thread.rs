@@ -6,11 +6,12 @@
 use prism::camera::Camera;
 use prism::render::{Legend, PassOutcome, ProgressiveRender, RenderSettings, View};
 use prism::scene::{PreparedScene, Scene};
+use std::cell::Cell;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::mpsc::{Receiver, Sender, TryRecvError, channel};
 use std::sync::{Arc, Mutex, MutexGuard};
 use std::thread::JoinHandle;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 /// While the camera moves, and before an edit's first full pass, one ray per block of at
 /// least this many pixels on a side.
@@ -20,6 +21,11 @@ pub const PREVIEW_BLOCK: u32 = 4;
 /// its blocks grow past `PREVIEW_BLOCK`, so that its cost (and an edit's wait for its
 /// first image) stays that of a 1024×768 one.
 pub const PREVIEW_RAYS: u32 = 1024 * 768 / (PREVIEW_BLOCK * PREVIEW_BLOCK);
+
+/// How long the UI holds its next frame for the image of a change it sent. A frame
+/// begun just after the change would show the old image and delay the new one by a whole
+/// frame; the coarse preview of a change usually comes well within this.
+pub const IMAGE_WAIT: Duration = Duration::from_millis(50);
 
 /// The side of a preview's blocks, in pixels, for a `width` × `height` image.
 pub fn preview_block(width: u32, height: u32) -> u32 {
@@ -106,6 +112,8 @@ pub struct RenderThread {
     generation: Arc<AtomicU64>,
     published: Arc<Mutex<Published>>,
     handle: Option<JoinHandle<()>>,
+    /// The generation of the last change sent whose image the UI waits for, and until when.
+    awaited: Cell<Option<(u64, Instant)>>,
 }
 
 impl RenderThread {
@@ -154,18 +162,36 @@ impl RenderThread {
             generation,
             published,
             handle: Some(handle),
+            awaited: Cell::new(None),
         }
     }
 
     /// Sends a change; the pass in flight is abandoned. Returns the change's generation:
     /// an image published with `Status::generation` at or past it shows the change.
+    /// The UI waits (`image_due`) for the image of any change but a moving camera's, whose
+    /// next position follows at once.
     pub fn send(&self, request: Request) -> u64 {
         let generation = self.generation.fetch_add(1, Ordering::SeqCst) + 1;
+        if !matches!(request, Request::Camera { moving: true, .. }) {
+            self.awaited
+                .set(Some((generation, Instant::now() + IMAGE_WAIT)));
+        }
         if let Some(tx) = &self.requests {
             // The worker only stops when we drop the sender, so this cannot fail first.
             let _ = tx.send(request);
         }
         generation
+    }
+
+    /// While the image of the last change sent is not published yet, and at most
+    /// `IMAGE_WAIT` after it was sent: when to stop waiting for it.
+    pub fn image_due(&self) -> Option<Instant> {
+        let (generation, deadline) = self.awaited.get()?;
+        if Instant::now() >= deadline || self.published().status.generation >= generation {
+            self.awaited.set(None);
+            return None;
+        }
+        Some(deadline)
     }
 
     pub fn published(&self) -> MutexGuard<'_, Published> {
@@ -531,5 +557,58 @@ mod tests {
                 "{w}×{h}: {rays} rays"
             );
         }
+    }
+
+    /// The UI waits for the image of a change it sent until that image is published or
+    /// IMAGE_WAIT has passed, and never for a moving camera's.
+    #[test]
+    fn a_change_is_awaited_until_its_image_is_published() {
+        let scene = prism::seed::scene().unwrap();
+        let settings = RenderSettings::new(32, 24, 1);
+        let (woken, wakes) = channel();
+        let thread = RenderThread::spawn(&scene, scene.camera, settings, move || {
+            let _ = woken.send(());
+        });
+        let sent = Instant::now();
+        let generation = thread.send(Request::Settings(RenderSettings::new(40, 30, 1)));
+        let due = thread.image_due();
+        // Unless the image is already out, the wait ends IMAGE_WAIT after sending at most.
+        if let Some(deadline) = due {
+            assert!(deadline >= sent && deadline <= Instant::now() + IMAGE_WAIT);
+        }
+        // Once an image of the change is published, nothing is awaited.
+        loop {
+            wakes.recv_timeout(Duration::from_secs(30)).unwrap();
+            if thread.published().status.generation >= generation {
+                break;
+            }
+        }
+        assert_eq!(thread.image_due(), None);
+        // A moving camera's image is not waited for.
+        let mut camera = scene.camera;
+        camera.eye.x += 0.1;
+        thread.send(Request::Camera {
+            camera,
+            moving: true,
+        });
+        assert_eq!(thread.image_due(), None);
+        // A change whose image never comes (no thread renders) is awaited no longer than
+        // IMAGE_WAIT.
+        let stopped = RenderThread {
+            requests: None,
+            generation: Arc::new(AtomicU64::new(0)),
+            published: Arc::new(Mutex::new(Published::default())),
+            handle: None,
+            awaited: Cell::new(None),
+        };
+        let first = stopped.send(Request::Select(None));
+        assert!(stopped.image_due().is_some());
+        // Its publication ends the wait at once.
+        stopped.published().status.generation = first;
+        assert_eq!(stopped.image_due(), None);
+        stopped.send(Request::Select(None));
+        assert!(stopped.image_due().is_some());
+        std::thread::sleep(IMAGE_WAIT);
+        assert_eq!(stopped.image_due(), None);
     }
 }
