@@ -376,7 +376,12 @@ impl PanelState {
             if even && !self.scale_per_axis {
                 let mut k = p.scale.x;
                 if ui
-                    .add(DragValue::new(&mut k).range(lo..=hi).speed(0.01))
+                    .add(
+                        DragValue::new(&mut k)
+                            .range(lo..=hi)
+                            .speed(0.01)
+                            .custom_formatter(|v, _| scale_text(v)),
+                    )
                     .changed()
                 {
                     p.scale = DVec3::splat(k);
@@ -387,7 +392,13 @@ impl PanelState {
                     (&mut p.scale.y, "y "),
                     (&mut p.scale.z, "z "),
                 ] {
-                    ui.add(DragValue::new(v).range(lo..=hi).speed(0.01).prefix(name));
+                    ui.add(
+                        DragValue::new(v)
+                            .range(lo..=hi)
+                            .speed(0.01)
+                            .prefix(name)
+                            .custom_formatter(|v, _| scale_text(v)),
+                    );
                 }
             }
             let mut per_axis = self.scale_per_axis || !even;
@@ -874,6 +885,17 @@ fn legend_bar(ui: &mut egui::Ui, legend: &Legend, view: View) {
 }
 
 /// A position in world coordinates; true when it changed.
+/// A scale factor as the panel shows it: three decimals, and tiny factors (which a typed 0
+/// is clamped to) in exponent form rather than as "0.000".
+fn scale_text(v: f64) -> String {
+    if v != 0.0 && v.abs() < 0.01 {
+        format!("{v:.2e}")
+    } else {
+        let text = format!("{v:.3}");
+        text.trim_end_matches('0').trim_end_matches('.').to_string()
+    }
+}
+
 fn position_row(ui: &mut egui::Ui, label: &str, p: &mut DVec3) -> bool {
     ui.horizontal(|ui| {
         ui.label(label);
@@ -931,6 +953,28 @@ fn status_lines(ui: &mut egui::Ui, s: &Status) {
 mod tests {
     use super::*;
     use prism::render::{AdaptiveSettings, RenderSettings};
+
+    /// A scale shows as few digits as it needs, and the smallest one a file may give
+    /// does not read as zero.
+    #[test]
+    fn scale_factors_read_as_what_they_are() {
+        for (v, text) in [
+            (1.0, "1"),
+            (1.5, "1.5"),
+            (0.25, "0.25"),
+            (10.0, "10"),
+            (1.0e6, "1000000"),
+            (0.0123, "0.012"),
+            (1.0e-6, "1.00e-6"),
+            (0.005, "5.00e-3"),
+        ] {
+            assert_eq!(scale_text(v), text, "{v}");
+            if v >= 0.01 {
+                let back: f64 = text.parse().unwrap();
+                assert!((back - v).abs() <= 5e-4 * v.max(1.0), "{v}");
+            }
+        }
+    }
 
     /// The values just inside and just outside a range's ends.
     fn ends(r: &RangeInclusive<f32>) -> [(f32, bool); 4] {
