@@ -10,7 +10,6 @@ use crate::limits::{
     DEPTH, ETA, FRACTION, MAX_COORDINATE, MAX_EXTINCTION, MAX_LIGHT_INTENSITY, MAX_PHONG_FACTOR,
     MAX_RADIANCE, MAX_SHININESS, MIN_LENGTH, REFLECTANCE, ROUGHNESS, SPOT_ANGLE,
 };
-use crate::messages::shortest;
 use glam::Vec3;
 use std::ops::RangeInclusive;
 use thiserror::Error;
@@ -335,26 +334,6 @@ impl Scene {
 }
 
 impl Scene {
-    /// Moves object `object` by `offset` (its shape, whatever its kind; a mesh with its
-    /// transform), if it stays within `MAX_COORDINATE` of the origin.
-    pub fn move_object(&mut self, object: usize, offset: Vec3) -> Result<(), EditError> {
-        let o = self.object_mut(object)?;
-        let moved = o.shape.transformed(1.0, offset);
-        let b = moved.bounds();
-        let reach = b.min.abs().max(b.max.abs()).max_element();
-        if !(offset.is_finite() && reach.is_finite() && reach as f64 <= MAX_COORDINATE) {
-            return Err(EditError::Material {
-                object: o.name.clone(),
-                field: "translate",
-                message: format!("{offset} would take it beyond {MAX_COORDINATE:e}"),
-            });
-        }
-        o.shape = moved;
-        // As a save writes the move: the offset with the fewest digits that read back.
-        o.placement.translate += glam::DVec3::from(offset.to_array().map(shortest));
-        Ok(())
-    }
-
     /// Places object `object`'s entry in the scene file by `placement` (its `translate`,
     /// `rotate` and `scale`), as `loaded`, the load this scene comes from, would with those
     /// values: the same shapes, checked by the same rules. A mesh entry's parts move

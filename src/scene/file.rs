@@ -932,7 +932,7 @@ impl Validator<'_> {
                        i: usize,
                        span: Range<usize>,
                        d: &dyn EntryDef,
-                       shape: &dyn Fn(&Item) -> Result<ShapeDesc, SceneError>|
+                       shape: &dyn Fn(&Item, &Placement) -> Result<ShapeDesc, SceneError>|
          -> Result<(), SceneError> {
             let label = entry_label(kind, i, d.name());
             let at = Item { span, name: &label };
@@ -946,8 +946,8 @@ impl Validator<'_> {
                     )
                 })?,
             };
-            let shape = shape(&at)?;
-            let (translate, rotate, scale) = d.placement();
+            let placement = self.placement(&at, d)?;
+            let shape = shape(&at, &placement)?;
             objects.push(SceneObject {
                 name: d
                     .name()
@@ -955,7 +955,7 @@ impl Validator<'_> {
                 shape,
                 material,
                 casts_shadow: d.shadow().unwrap_or(true),
-                placement: self.placement(&at, translate, rotate, scale)?.written(),
+                placement: placement.written(),
             });
             origins.push(ObjectOrigin {
                 table: kind,
@@ -968,7 +968,7 @@ impl Validator<'_> {
             ($list:expr, $kind:literal, $read:ident) => {
                 for (i, item) in $list.iter().enumerate() {
                     let d = item.get_ref();
-                    add($kind, i, item.span(), d, &|at| self.$read(at, d))?;
+                    add($kind, i, item.span(), d, &|at, p| self.$read(at, d, p))?;
                 }
             };
         }
@@ -1000,7 +1000,7 @@ impl Validator<'_> {
                     )
                 })?),
             };
-            let placement = self.placement(&at, d.translate, d.rotate, d.scale.as_ref())?;
+            let placement = self.placement(&at, d)?;
             let parts = self.mesh_objects(&at, d, material, &mut mesh_files, &mut images)?;
             let transform =
                 self.mesh_transform(&at, parts.iter().map(|p| p.mesh.as_ref()), &placement)?;
@@ -1040,8 +1040,12 @@ impl Validator<'_> {
     }
 
     /// A `[[spheres]]` entry, placed.
-    fn sphere(&self, at: &Item, d: &SphereDef) -> Result<ShapeDesc, SceneError> {
-        let placement = self.placement(at, d.translate, d.rotate, d.scale.as_ref())?;
+    fn sphere(
+        &self,
+        at: &Item,
+        d: &SphereDef,
+        placement: &Placement,
+    ) -> Result<ShapeDesc, SceneError> {
         match placement.uniform_scale() {
             Some(s) => Ok(ShapeDesc::Sphere {
                 center: self.position(at, "center", placement.point(d.center))?,
@@ -1052,14 +1056,18 @@ impl Validator<'_> {
                     center: self.position(at, "center", d.center)?,
                     radius: self.length(at, "radius", d.radius)?,
                 };
-                self.transformed(at, sphere, &placement)
+                self.transformed(at, sphere, placement)
             }
         }
     }
 
     /// A `[[cylinders]]` entry, placed.
-    fn cylinder(&self, at: &Item, d: &CylinderDef) -> Result<ShapeDesc, SceneError> {
-        let placement = self.placement(at, d.translate, d.rotate, d.scale.as_ref())?;
+    fn cylinder(
+        &self,
+        at: &Item,
+        d: &CylinderDef,
+        placement: &Placement,
+    ) -> Result<ShapeDesc, SceneError> {
         let upright = placement.upright_scale();
         let (a, b) = upright.unwrap_or((1.0, 1.0));
         let base = if upright.is_some() {
@@ -1081,21 +1089,29 @@ impl Validator<'_> {
         };
         match upright {
             Some(_) => Ok(cylinder),
-            None => self.transformed(at, cylinder, &placement),
+            None => self.transformed(at, cylinder, placement),
         }
     }
 
     /// A `[[polygons]]` entry, placed.
-    fn polygon(&self, at: &Item, d: &PolygonDef) -> Result<ShapeDesc, SceneError> {
-        let placement = self.placement(at, d.translate, d.rotate, d.scale.as_ref())?;
+    fn polygon(
+        &self,
+        at: &Item,
+        d: &PolygonDef,
+        placement: &Placement,
+    ) -> Result<ShapeDesc, SceneError> {
         let placed: Vec<P3> = d.vertices.iter().map(|&v| placement.point(v)).collect();
         let vertices = self.flat_corners(at, &placed)?;
         Ok(ShapeDesc::Polygon { vertices })
     }
 
     /// A `[[triangles]]` entry, placed.
-    fn triangle(&self, at: &Item, d: &TriangleDef) -> Result<ShapeDesc, SceneError> {
-        let placement = self.placement(at, d.translate, d.rotate, d.scale.as_ref())?;
+    fn triangle(
+        &self,
+        at: &Item,
+        d: &TriangleDef,
+        placement: &Placement,
+    ) -> Result<ShapeDesc, SceneError> {
         let v = self.flat_corners(at, &d.vertices.map(|v| placement.point(v)))?;
         Ok(ShapeDesc::Triangle {
             vertices: [v[0], v[1], v[2]],
@@ -1103,8 +1119,12 @@ impl Validator<'_> {
     }
 
     /// A `[[tetrahedra]]` entry, placed.
-    fn tetrahedron(&self, at: &Item, d: &TetrahedronDef) -> Result<ShapeDesc, SceneError> {
-        let placement = self.placement(at, d.translate, d.rotate, d.scale.as_ref())?;
+    fn tetrahedron(
+        &self,
+        at: &Item,
+        d: &TetrahedronDef,
+        placement: &Placement,
+    ) -> Result<ShapeDesc, SceneError> {
         let v = self.vertices(at, &d.vertices.map(|v| placement.point(v)))?;
         if !has_volume(&v) {
             return Err(self.field_error(

@@ -731,15 +731,21 @@ material = \"mirror\"
         assert_eq!(back, edited, "{}", saved.text);
     }
 
-    /// A moved object gets a `translate` (or a larger one), and reads back where it was
-    /// moved to.
+    /// A moved object gets a `translate`, and reads back where it was moved to.
     #[test]
     fn moved_objects_are_saved_as_translations() {
         let (_dir, path, loaded) = load(SCENE);
         let mut edited = loaded.scene.clone();
-        edited.move_object(0, Vec3::new(0.5, 0.0, -1.0)).unwrap();
-        edited.move_object(2, Vec3::new(0.0, 2.0, 0.0)).unwrap();
-        edited.move_object(2, Vec3::new(0.0, 0.25, 0.0)).unwrap();
+        let moved = |edited: &Scene, loaded: &LoadedScene, i: usize, by: [f64; 3]| {
+            let mut e = edited.clone();
+            let mut p = e.objects[i].placement;
+            p.translate += DVec3::from(by);
+            e.place_object(loaded, i, p).unwrap();
+            e
+        };
+        edited = moved(&edited, &loaded, 0, [0.5, 0.0, -1.0]);
+        edited = moved(&edited, &loaded, 2, [0.0, 2.0, 0.0]);
+        edited = moved(&edited, &loaded, 2, [0.0, 0.25, 0.0]);
         let saved = saved_text(&loaded, &edited, &loaded.scene.camera).unwrap();
         assert!(
             saved.text.contains("translate = [0.5, 0.0, -1.0]"),
@@ -763,8 +769,7 @@ material = \"mirror\"
         }
         // Saved again, the translation grows.
         let loaded = load_scene_file(&path).result.unwrap();
-        let mut again = loaded.scene.clone();
-        again.move_object(0, Vec3::new(0.5, 0.0, 0.0)).unwrap();
+        let again = moved(&loaded.scene, &loaded, 0, [0.5, 0.0, 0.0]);
         let text = saved_text(&loaded, &again, &loaded.scene.camera)
             .unwrap()
             .text;

@@ -352,54 +352,32 @@ impl PanelState {
                 "The file's `rotate`: degrees about x, then y, then z, about the world's \
                  origin, after the scale and before the move",
             );
-            for (v, name) in [
-                (&mut p.rotate.x, "x "),
-                (&mut p.rotate.y, "y "),
-                (&mut p.rotate.z, "z "),
-            ] {
-                ui.add(
-                    DragValue::new(v)
-                        .range(-MAX_DEGREES..=MAX_DEGREES)
-                        // A file's 720 stays 720 until it is edited.
-                        .clamp_existing_to_range(false)
-                        .speed(0.5)
-                        .prefix(name),
-                );
-            }
+            let r = &mut p.rotate;
+            xyz(ui, [&mut r.x, &mut r.y, &mut r.z], |d| {
+                d.range(-MAX_DEGREES..=MAX_DEGREES)
+                    // A file's 720 stays 720 until it is edited.
+                    .clamp_existing_to_range(false)
+                    .speed(0.5)
+            });
         });
         ui.horizontal(|ui| {
             ui.label("scale").on_hover_text(
                 "The file's `scale`: about the world's origin, before the turn and the move",
             );
-            let (lo, hi) = (*prism::limits::SCALE.start(), *prism::limits::SCALE.end());
+            fn factor(d: DragValue<'_>) -> DragValue<'_> {
+                d.range(prism::limits::SCALE)
+                    .speed(0.01)
+                    .custom_formatter(|v, _| scale_text(v))
+            }
             let even = p.scale.x == p.scale.y && p.scale.y == p.scale.z;
             if even && !self.scale_per_axis {
                 let mut k = p.scale.x;
-                if ui
-                    .add(
-                        DragValue::new(&mut k)
-                            .range(lo..=hi)
-                            .speed(0.01)
-                            .custom_formatter(|v, _| scale_text(v)),
-                    )
-                    .changed()
-                {
+                if ui.add(factor(DragValue::new(&mut k))).changed() {
                     p.scale = DVec3::splat(k);
                 }
             } else {
-                for (v, name) in [
-                    (&mut p.scale.x, "x "),
-                    (&mut p.scale.y, "y "),
-                    (&mut p.scale.z, "z "),
-                ] {
-                    ui.add(
-                        DragValue::new(v)
-                            .range(lo..=hi)
-                            .speed(0.01)
-                            .prefix(name)
-                            .custom_formatter(|v, _| scale_text(v)),
-                    );
-                }
+                let s = &mut p.scale;
+                xyz(ui, [&mut s.x, &mut s.y, &mut s.z], factor);
             }
             let mut per_axis = self.scale_per_axis || !even;
             if ui
@@ -884,7 +862,6 @@ fn legend_bar(ui: &mut egui::Ui, legend: &Legend, view: View) {
     ui.small(text);
 }
 
-/// A position in world coordinates; true when it changed.
 /// A scale factor as the panel shows it: three decimals, and tiny factors (which a typed 0
 /// is clamped to) in exponent form rather than as "0.000".
 fn scale_text(v: f64) -> String {
@@ -896,20 +873,26 @@ fn scale_text(v: f64) -> String {
     }
 }
 
+/// Three numbers named x, y and z, each styled by `style`; true when one changed.
+fn xyz<N: egui::emath::Numeric>(
+    ui: &mut egui::Ui,
+    values: [&mut N; 3],
+    style: impl Fn(DragValue<'_>) -> DragValue<'_>,
+) -> bool {
+    let mut changed = false;
+    for (v, name) in values.into_iter().zip(["x ", "y ", "z "]) {
+        changed |= ui.add(style(DragValue::new(v)).prefix(name)).changed();
+    }
+    changed
+}
+
+/// A position in world coordinates; true when it changed.
 fn position_row(ui: &mut egui::Ui, label: &str, p: &mut DVec3) -> bool {
     ui.horizontal(|ui| {
         ui.label(label);
-        let mut changed = false;
-        for (v, name) in [(&mut p.x, "x "), (&mut p.y, "y "), (&mut p.z, "z ")] {
-            let r = ui.add(
-                DragValue::new(v)
-                    .range(-MAX_COORDINATE..=MAX_COORDINATE)
-                    .speed(0.05)
-                    .prefix(name),
-            );
-            changed |= r.changed();
-        }
-        changed
+        xyz(ui, [&mut p.x, &mut p.y, &mut p.z], |d| {
+            d.range(-MAX_COORDINATE..=MAX_COORDINATE).speed(0.05)
+        })
     })
     .inner
 }

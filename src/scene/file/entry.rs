@@ -112,24 +112,30 @@ impl LoadedScene {
             origin: glam::DVec3::from(file.camera.get_ref().eye),
             reads: Default::default(),
         };
-        let index = origin.index;
-        macro_rules! placed {
-            ($list:expr, $read:ident) => {{
+        let (table, index) = (origin.table, origin.index);
+        // The entry with the new placement, its span and its label; None if the file has
+        // no such entry.
+        macro_rules! entry {
+            ($list:expr) => {{
                 let Some(item) = $list.get_mut(index) else {
                     return Ok(None);
                 };
                 let span = item.span();
                 let d = item.get_mut();
                 d.set_placement(placement);
-                let label = entry_label(origin.table, index, d.name());
-                let at = Item { span, name: &label };
-                let shape = v.$read(&at, d)?;
-                let (t, r, s) = d.placement();
-                let written = v.placement(&at, t, r, s)?.written();
-                (vec![(object, shape)], written)
+                let label = entry_label(table, index, d.name());
+                (&*d, span, label)
             }};
         }
-        let (shapes, written) = match origin.table {
+        macro_rules! placed {
+            ($list:expr, $read:ident) => {{
+                let (d, span, label) = entry!($list);
+                let at = Item { span, name: &label };
+                let placed = v.placement(&at, d)?;
+                (vec![(object, v.$read(&at, d, &placed)?)], placed.written())
+            }};
+        }
+        let (shapes, written) = match table {
             "spheres" => placed!(file.spheres, sphere),
             "cylinders" => placed!(file.cylinders, cylinder),
             "polygons" => placed!(file.polygons, polygon),
@@ -141,16 +147,9 @@ impl LoadedScene {
             "cones" => placed!(file.cones, cone),
             "tori" => placed!(file.tori, torus),
             "meshes" => {
-                let Some(item) = file.meshes.get_mut(index) else {
-                    return Ok(None);
-                };
-                let span = item.span();
-                let d = item.get_mut();
-                d.set_placement(placement);
-                let label = entry_label("meshes", index, d.name());
+                let (d, span, label) = entry!(file.meshes);
                 let at = Item { span, name: &label };
-                let (t, r, s) = d.placement();
-                let placed = v.placement(&at, t, r, s)?;
+                let placed = v.placement(&at, d)?;
                 // Every part of the entry, with the mesh it holds.
                 let parts: Vec<(usize, std::sync::Arc<crate::geometry::Mesh>)> = self
                     .origins

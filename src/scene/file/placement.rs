@@ -2,7 +2,8 @@
 //! right-handed, as POV-Ray's `rotate`), then `translate`, in the scene file's own (world)
 //! coordinates and in f64, so that a transform of a far-off scene keeps its precision.
 
-use super::{Item, P3, V3, Validator};
+use super::entry::EntryDef;
+use super::{Item, P3, Validator};
 use crate::geometry::Transform;
 use crate::limits;
 use crate::messages::number;
@@ -101,14 +102,9 @@ impl Placement {
 }
 
 impl Validator<'_> {
-    /// The placement that an object's `translate`, `rotate` and `scale` give.
-    pub(super) fn placement(
-        &self,
-        at: &Item,
-        translate: Option<P3>,
-        rotate: Option<V3>,
-        scale: Option<&toml::Value>,
-    ) -> Result<Placement, SceneError> {
+    /// The placement that an object entry's `translate`, `rotate` and `scale` give.
+    pub(super) fn placement(&self, at: &Item, d: &dyn EntryDef) -> Result<Placement, SceneError> {
+        let (translate, rotate, scale) = d.placement();
         let mut out = Placement::IDENTITY;
         if let Some(t) = translate {
             let t = DVec3::from(t);

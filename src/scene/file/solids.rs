@@ -110,8 +110,12 @@ impl Validator<'_> {
         self.length(at, field, v)
     }
 
-    pub(super) fn cuboid(&self, at: &Item, d: &BoxDef) -> Result<ShapeDesc, SceneError> {
-        let placement = self.placement(at, d.translate, d.rotate, d.scale.as_ref())?;
+    pub(super) fn cuboid(
+        &self,
+        at: &Item,
+        d: &BoxDef,
+        placement: &Placement,
+    ) -> Result<ShapeDesc, SceneError> {
         for axis in 0..3 {
             // A NaN is left to the position check, which names it.
             if d.min[axis] >= d.max[axis] {
@@ -145,12 +149,16 @@ impl Validator<'_> {
         if axis_aligned {
             Ok(cuboid)
         } else {
-            self.transformed(at, cuboid, &placement)
+            self.transformed(at, cuboid, placement)
         }
     }
 
-    pub(super) fn disc(&self, at: &Item, d: &DiscDef) -> Result<ShapeDesc, SceneError> {
-        let placement = self.placement(at, d.translate, d.rotate, d.scale.as_ref())?;
+    pub(super) fn disc(
+        &self,
+        at: &Item,
+        d: &DiscDef,
+        placement: &Placement,
+    ) -> Result<ShapeDesc, SceneError> {
         let normal = self.normal(at, "normal", d.normal)?;
         match placement.uniform_scale() {
             Some(s) => Ok(ShapeDesc::Disc {
@@ -164,13 +172,17 @@ impl Validator<'_> {
                     normal,
                     radius: self.length(at, "radius", d.radius)?,
                 };
-                self.transformed(at, disc, &placement)
+                self.transformed(at, disc, placement)
             }
         }
     }
 
-    pub(super) fn plane(&self, at: &Item, d: &PlaneDef) -> Result<ShapeDesc, SceneError> {
-        let placement = self.placement(at, d.translate, d.rotate, d.scale.as_ref())?;
+    pub(super) fn plane(
+        &self,
+        at: &Item,
+        d: &PlaneDef,
+        placement: &Placement,
+    ) -> Result<ShapeDesc, SceneError> {
         let normal = self.normal(at, "normal", d.normal)?;
         Ok(ShapeDesc::Plane {
             point: self.position(at, "point", placement.point(d.point))?,
@@ -178,8 +190,12 @@ impl Validator<'_> {
         })
     }
 
-    pub(super) fn cone(&self, at: &Item, d: &ConeDef) -> Result<ShapeDesc, SceneError> {
-        let placement = self.placement(at, d.translate, d.rotate, d.scale.as_ref())?;
+    pub(super) fn cone(
+        &self,
+        at: &Item,
+        d: &ConeDef,
+        placement: &Placement,
+    ) -> Result<ShapeDesc, SceneError> {
         let upright = placement.upright_scale();
         let (across, along) = upright.unwrap_or((1.0, 1.0));
         let base = if upright.is_some() {
@@ -210,12 +226,16 @@ impl Validator<'_> {
         };
         match upright {
             Some(_) => Ok(cone),
-            None => self.transformed(at, cone, &placement),
+            None => self.transformed(at, cone, placement),
         }
     }
 
-    pub(super) fn torus(&self, at: &Item, d: &TorusDef) -> Result<ShapeDesc, SceneError> {
-        let placement = self.placement(at, d.translate, d.rotate, d.scale.as_ref())?;
+    pub(super) fn torus(
+        &self,
+        at: &Item,
+        d: &TorusDef,
+        placement: &Placement,
+    ) -> Result<ShapeDesc, SceneError> {
         let direct = placement.uniform_scale().is_some();
         let s = placement.uniform_scale().unwrap_or(1.0);
         let major_radius = self.length(at, "major_radius", (d.major_radius as f64 * s) as f32)?;
@@ -245,7 +265,7 @@ impl Validator<'_> {
         if direct {
             Ok(torus)
         } else {
-            self.transformed(at, torus, &placement)
+            self.transformed(at, torus, placement)
         }
     }
 }
