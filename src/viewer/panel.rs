@@ -16,9 +16,6 @@ use prism::scene::{EditError, ObjectPlacement, Scene};
 use std::ops::RangeInclusive;
 use std::path::PathBuf;
 
-/// The largest turn the rotate fields take, in degrees either way (any turn is within one).
-const MAX_DEGREES: f32 = 360.0;
-
 /// Panel width in points.
 pub const PANEL_WIDTH: f32 = 300.0;
 
@@ -353,12 +350,8 @@ impl PanelState {
                  origin, after the scale and before the move",
             );
             let r = &mut p.rotate;
-            xyz(ui, [&mut r.x, &mut r.y, &mut r.z], |d| {
-                d.range(-MAX_DEGREES..=MAX_DEGREES)
-                    // A file's 720 stays 720 until it is edited.
-                    .clamp_existing_to_range(false)
-                    .speed(0.5)
-            });
+            // Any finite angle, as in the file: place_object refuses the rest.
+            xyz(ui, [&mut r.x, &mut r.y, &mut r.z], |d| d.speed(0.5));
         });
         ui.horizontal(|ui| {
             ui.label("scale").on_hover_text(
