@@ -39,6 +39,13 @@ pub fn shown_within(text: &str, max: usize) -> String {
     out
 }
 
+/// A path as it may appear in a message: control characters (a terminal escape typed into
+/// `-o`, a newline) written as escapes, as names from a scene file are; not shortened below
+/// the longest path a system takes.
+pub fn shown_path(path: &std::path::Path) -> String {
+    shown_within(&path.to_string_lossy(), 4096)
+}
+
 /// A number as a person writes it: plainly in the usual range, in exponent form when huge
 /// or tiny (2e19, not 20000000000000000000).
 pub fn number(v: f32) -> String {
@@ -74,6 +81,14 @@ mod tests {
         assert_eq!(s.chars().count(), MAX_NAME_CHARS + 1);
         assert!(s.ends_with('…'));
         assert_eq!(quoted("x\ty"), "\"x\\ty\"");
+    }
+
+    #[test]
+    fn paths_are_escaped_whole() {
+        let p = std::path::Path::new("out/\u{1b}]0;title\u{7}x.png");
+        assert_eq!(shown_path(p), "out/\\u{1b}]0;title\\u{7}x.png");
+        let long = "d/".repeat(1000) + "f.png";
+        assert_eq!(shown_path(std::path::Path::new(&long)), long);
     }
 
     #[test]

@@ -60,6 +60,15 @@ impl Case {
     }
 
     fn render(&self, scene: &Path, extra: &[&str]) -> Output {
+        self.run(scene, extra, true)
+    }
+
+    /// `render` without `--quiet`: with the summary and statistics on stderr.
+    fn render_reporting(&self, scene: &Path, extra: &[&str]) -> Output {
+        self.run(scene, extra, false)
+    }
+
+    fn run(&self, scene: &Path, extra: &[&str], quiet: bool) -> Output {
         let out = self.out();
         let mut args = vec![
             "render",
@@ -67,7 +76,9 @@ impl Case {
             "--out",
             out.to_str().unwrap(),
         ];
-        args.push("--quiet");
+        if quiet {
+            args.push("--quiet");
+        }
         for (flag, value) in [("--width", "40"), ("--height", "30")] {
             if !extra.contains(&flag) {
                 args.extend_from_slice(&[flag, value]);
@@ -105,10 +116,18 @@ fn replace(from: &str, to: &str) -> String {
 fn renders_a_png_and_reports_speed() {
     let case = Case::new();
     let scene = case.scene(GOOD);
-    let out = case.render(&scene, &["--aa", "2", "--threads", "2"]);
+    let out = case.render_reporting(&scene, &["--aa", "2", "--threads", "2"]);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "{stderr}");
     assert!(stderr.contains("4.00 samples per pixel"), "{stderr}");
+    assert!(stderr.contains(" 4 passes,"), "{stderr}");
+    // Quiet means nothing on stderr when all goes well.
+    let out = case.render(&scene, &["--aa", "1", "--threads", "2"]);
+    assert!(out.status.success());
+    assert_eq!(String::from_utf8_lossy(&out.stderr), "");
+    let out = case.render_reporting(&scene, &["--aa", "1"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains(" 1 pass,"), "{stderr}");
     assert!(stderr.contains("M rays/s"), "{stderr}");
     let img = image::open(case.out()).unwrap().into_rgb8();
     assert_eq!(img.dimensions(), (40, 30));
@@ -269,7 +288,8 @@ fn bad_image_settings_are_rejected() {
 fn unwritable_output_fails_before_rendering() {
     let case = Case::new();
     let scene = case.scene(GOOD);
-    let bad = case.dir.path().join("missing-dir/out.png");
+    // A folder that cannot be made: its parent is a file.
+    let bad = scene.join("missing-dir/out.png");
     let out = prism(&[
         "render",
         scene.to_str().unwrap(),
@@ -279,6 +299,7 @@ fn unwritable_output_fails_before_rendering() {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{stderr}");
     assert!(stderr.contains("missing-dir/out.png"), "{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
     assert!(
         !stderr.contains("rendered"),
         "it should not have rendered: {stderr}"
@@ -426,7 +447,7 @@ fn statistics_are_reported_and_written_as_json() {
     let case = Case::new();
     let scene = case.scene(GOOD);
     let json_path = case.dir.path().join("stats.json");
-    let out = case.render(&scene, &["--stats-json", json_path.to_str().unwrap()]);
+    let out = case.render_reporting(&scene, &["--stats-json", json_path.to_str().unwrap()]);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "{stderr}");
     assert!(
@@ -453,11 +474,159 @@ fn statistics_are_reported_and_written_as_json() {
     assert!(stats["peak_memory_bytes"].as_u64().unwrap_or(u64::MAX) > 1 << 20);
 
     std::fs::remove_file(case.out()).unwrap();
-    let bad = case.dir.path().join("no-such-dir/stats.json");
+    // A folder that cannot be made: its parent is a file.
+    let bad = scene.join("stats.json");
     let out = case.render(&scene, &["--stats-json", bad.to_str().unwrap()]);
     assert_eq!(out.status.code(), Some(2));
     assert!(
         !case.out().exists(),
         "no image after a refused statistics path"
+    );
+}
+
+/// No output may land on what the render reads or on another of its outputs: refused with
+/// exit 2 before anything is rendered, and the file is unchanged.
+#[test]
+fn outputs_never_overwrite_inputs_or_each_other() {
+    let case = Case::new();
+    let dir = case.dir.path();
+    let obj = dir.join("tri.obj");
+    std::fs::write(&obj, "v 0 0 -4\nv 1 0 -4\nv 0 1 -4\nf 1 2 3\n").unwrap();
+    let scene = case.scene(&format!("{GOOD}\n[[meshes]]\npath = \"tri.obj\"\n"));
+    let before = std::fs::read(&scene).unwrap();
+    let out = case.out();
+    let s = |p: &Path| p.to_str().unwrap().to_string();
+    for (args, needle) in [
+        (
+            vec!["--stats-json".to_string(), s(&scene)],
+            "the scene file",
+        ),
+        (vec!["--stats-json".to_string(), s(&out)], "the image"),
+        (
+            vec!["--stats-json".to_string(), s(&obj)],
+            "which the scene reads",
+        ),
+        (
+            vec!["--stats-json".to_string(), s(&dir.join("./x/../out.png"))],
+            "the image",
+        ),
+    ] {
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let o = case.render(&scene, &args);
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(stderr.contains(needle), "{args:?}: {stderr}");
+    }
+    assert_eq!(std::fs::read(&scene).unwrap(), before);
+    assert!(!out.exists());
+    // An image on a mesh or the scene, and frames through templates.
+    let o = prism(&["render", &s(&scene), "-q", "-o", &s(&obj)]);
+    assert_eq!(o.status.code(), Some(2));
+    let tex = dir.join("tex.png");
+    image::RgbImage::from_pixel(2, 2, image::Rgb([9, 9, 9]))
+        .save(&tex)
+        .unwrap();
+    let textured = case.scene(&format!(
+        "{GOOD}\n[textures.t]\ntype = \"image\"\npath = \"tex.png\"\n[materials.t]\ntexture = \"t\"\n"
+    ));
+    let o = prism(&["render", &s(&textured), "-q", "-o", &s(&tex)]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("which the scene reads"), "{stderr}");
+    assert_eq!(
+        image::open(&tex).unwrap().into_rgb8().get_pixel(0, 0).0,
+        [9, 9, 9]
+    );
+    let o = prism(&[
+        "render",
+        &s(&textured),
+        "-q",
+        "--width",
+        "8",
+        "--height",
+        "6",
+        "-o",
+        &s(&dir.join("same_{tile}.png")),
+        "--stats-json",
+        &s(&dir.join("same_{tile}.png")),
+        "--tile",
+        "1/2",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(!dir.join("same_1.png").exists());
+}
+
+/// Outputs go where a user expects: missing folders are made (and said), `{tile}` needs a
+/// tile, and `--skip-existing` skips only a file, not a folder of the name.
+#[test]
+fn output_paths_behave_as_a_user_expects() {
+    let case = Case::new();
+    let scene = case.scene(GOOD);
+    let dir = case.dir.path();
+    let nested = dir.join("frames/a/shot_0000.png");
+    let o = prism(&[
+        "render",
+        scene.to_str().unwrap(),
+        "--width",
+        "8",
+        "--height",
+        "6",
+        "-o",
+        dir.join("frames/a/shot_{frame:04}.png").to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{stderr}");
+    assert!(stderr.contains("made the folder"), "{stderr}");
+    assert!(nested.is_file());
+
+    let o = prism(&[
+        "render",
+        scene.to_str().unwrap(),
+        "-q",
+        "-o",
+        dir.join("x_{tile}.png").to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("{tile}") && stderr.contains("--tile"),
+        "{stderr}"
+    );
+    assert!(!dir.join("x_.png").exists());
+
+    let folder = dir.join("done.png");
+    std::fs::create_dir(&folder).unwrap();
+    let o = prism(&[
+        "render",
+        scene.to_str().unwrap(),
+        "-q",
+        "--skip-existing",
+        "-o",
+        folder.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(
+        o.status.code(),
+        Some(2),
+        "a folder is not a finished image: {stderr}"
+    );
+    assert!(stderr.contains("directory"), "{stderr}");
+
+    // A terminal escape in a path is shown escaped, never sent to the terminal.
+    let o = prism(&[
+        "render",
+        scene.to_str().unwrap(),
+        "--width",
+        "4",
+        "--height",
+        "3",
+        "-o",
+        dir.join("esc\u{1b}[31m.png").to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{stderr}");
+    assert!(
+        !stderr.contains('\u{1b}') && stderr.contains("\\u{1b}"),
+        "{stderr}"
     );
 }

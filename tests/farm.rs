@@ -513,10 +513,11 @@ fn animation_frames_render_to_a_template() {
         .unwrap();
     assert!(out.status.success(), "{}", stderr(&out));
     assert_eq!(rgb8(Path::new(&alone)), frame(2));
-    // A rerun skips what exists.
+    // A rerun skips what exists (and says so, without --quiet).
     std::fs::remove_file(d.path("f_001.png")).unwrap();
+    let loud: Vec<&str> = base.iter().copied().filter(|&a| a != "--quiet").collect();
     let e = ok(&[
-        &base[..],
+        &loud[..],
         &["--frames", "0..=2", "--skip-existing", "-o", &template],
     ]
     .concat());
@@ -596,17 +597,23 @@ fn a_signal_stops_the_render_within_a_pass() {
             .stderr(Stdio::piped())
             .spawn()
             .unwrap();
-        // Wait until the output is claimed, then a while: the passes are running (each
-        // takes more than a second here).
+        // Wait until the worker threads run, then a while: the passes are running (each
+        // takes more than a second here). Nothing is on disk while they do.
         let start = Instant::now();
-        while d.files().is_empty() {
+        let tasks = format!("/proc/{}/task", child.id());
+        while std::fs::read_dir(&tasks).map_or(0, |t| t.count()) < 3 {
             assert!(
                 start.elapsed() < Duration::from_secs(30),
-                "no temporary file"
+                "the workers never started"
             );
             std::thread::sleep(Duration::from_millis(20));
         }
         std::thread::sleep(Duration::from_millis(1500));
+        assert!(
+            d.files().is_empty(),
+            "nothing on disk mid-render: {:?}",
+            d.files()
+        );
         let sent = Instant::now();
         assert!(
             Command::new("kill")
@@ -656,6 +663,83 @@ fn a_signal_stops_the_render_within_a_pass() {
             break;
         }
     }
+}
+
+/// A black 8-bit PNG of `side`², placed as `placement` says.
+fn placed_png(path: &Path, side: u32, placement: &str) {
+    let file = std::io::BufWriter::new(std::fs::File::create(path).unwrap());
+    let mut encoder = png::Encoder::new(file, side, side);
+    encoder.set_color(png::ColorType::Rgb);
+    encoder.set_depth(png::BitDepth::Eight);
+    encoder
+        .add_text_chunk("prism placement".into(), placement.into())
+        .unwrap();
+    let mut writer = encoder.write_header().unwrap();
+    writer
+        .write_image_data(&vec![0; (side * side * 3) as usize])
+        .unwrap();
+    writer.finish().unwrap();
+}
+
+/// `prism stitch` decides from the tiles' headers before it decodes a pixel, so a set that
+/// cannot make a frame costs no pixel memory; it opens only regular files (a FIFO tile or
+/// a sidecar linked to /dev/zero is refused at once).
+#[test]
+fn stitch_reads_headers_first_and_only_regular_files() {
+    let d = Dir::new();
+    // Five copies of one 4096² tile (48 MiB each, decoded) claiming the whole frame: under
+    // a 200 MiB address-space limit, only refusing before decoding can answer.
+    let mut tiles = Vec::new();
+    for i in 0..5 {
+        let path = d.path(&format!("big{i}.png"));
+        placed_png(&path, 4096, "0,0,4096,4096 of 4096x4096");
+        tiles.push(path.to_str().unwrap().to_string());
+    }
+    let command = format!(
+        "ulimit -v 200000; exec \"$0\" stitch {} -o {}",
+        tiles.join(" "),
+        d.s("out.png")
+    );
+    let out = Command::new("bash")
+        .args(["-c", &command, env!("CARGO_BIN_EXE_prism")])
+        .output()
+        .unwrap();
+    let e = stderr(&out);
+    assert_eq!(out.status.code(), Some(2), "{e}");
+    assert!(e.contains("overlap"), "{e}");
+    // A frame larger than any render is refused from the header too.
+    placed_png(&d.path("huge.png"), 8, "0,0,8,8 of 100000x8");
+    refused(
+        &["stitch", &d.s("huge.png"), "-o", &d.s("out.png")],
+        &["100000×8", "at most 16384"],
+    );
+
+    let fifo = d.path("fifo.png");
+    if Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .unwrap()
+        .success()
+    {
+        let start = Instant::now();
+        refused(
+            &["stitch", fifo.to_str().unwrap(), "-o", &d.s("out.png")],
+            &["fifo.png", "not a regular file"],
+        );
+        assert!(start.elapsed() < Duration::from_secs(10));
+    }
+    // A float tile whose sidecar is /dev/zero.
+    let tile = d.s("t.pfm");
+    ok(&[
+        "render", "--quiet", "--width", "8", "--height", "6", "--tile", "0/2", "-o", &tile,
+    ]);
+    std::fs::remove_file(d.path("t.pfm.placement")).unwrap();
+    std::os::unix::fs::symlink("/dev/zero", d.path("t.pfm.placement")).unwrap();
+    refused(
+        &["stitch", &tile, "-o", &d.s("out.pfm")],
+        &["t.pfm.placement", "not a regular file"],
+    );
+    assert!(!d.path("out.png").exists() && !d.path("out.pfm").exists());
 }
 
 /// The exit statuses are in --help, as a farm's scripts need them.

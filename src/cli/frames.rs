@@ -207,6 +207,17 @@ impl OutputTemplate {
         )))
     }
 
+    /// Refuses `{tile}` in a template when no tile is rendered: it would be left empty.
+    pub fn require_tile(&self, flag: &str, tile: bool) -> Result<(), BadOption> {
+        if tile || !self.pieces.iter().any(|p| matches!(p, Piece::Tile { .. })) {
+            return Ok(());
+        }
+        Err(BadOption(format!(
+            "{flag}: {{tile}} stands for the tile's index, which --tile I/N gives; without \
+             --tile there is none (write the name without it)"
+        )))
+    }
+
     /// The path for `frame` (and `tile`, when rendering one; else `{tile}` is left empty).
     pub fn path(&self, frame: u32, tile: Option<u32>) -> PathBuf {
         let mut out = String::new();
@@ -240,6 +251,10 @@ mod tests {
         assert_eq!(t.path(0, None), PathBuf::from("{literal}.png"));
         assert!(t.require_frame("--out", 2).is_err());
         assert!(t.require_frame("--out", 1).is_ok());
+        let t = OutputTemplate::parse("--out", "x_{tile}.png").unwrap();
+        assert!(t.require_tile("--out", true).is_ok());
+        let e = t.require_tile("--out", false).unwrap_err();
+        assert!(e.to_string().contains("--tile"), "{e}");
         for bad in [
             "{frames}.png",
             "{frame:4}.png",

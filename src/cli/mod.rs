@@ -1,6 +1,7 @@
 //! Command-line parsing and the headless commands.
 
 mod frames;
+mod output_paths;
 mod render;
 mod stats;
 mod stitch;

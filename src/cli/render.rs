@@ -2,11 +2,13 @@
 //! or a region or tile of it, one frame of an animation or a range of them.
 
 use super::frames::{FrameChoice, OutputTemplate};
+use super::output_paths::{FileRoles, create_parent_folders};
 use super::stats::{Rays, RenderStats, Seconds, peak_memory_bytes};
 use super::stop::{self, Interrupted};
 use anyhow::{Context, Result, bail};
 use indicatif::{ProgressBar, ProgressStyle};
 use prism::color::Transfer;
+use prism::messages::shown_path;
 use prism::render::{AdaptiveSettings, PendingFile, RenderSettings};
 use prism::render::{BitDepth, ImageFormat, OutputOptions, PixelRect, Placement};
 use prism::sampler::SampleLayout;
@@ -146,8 +148,10 @@ pub fn run(args: RenderArgs) -> Result<()> {
         None => None,
     };
     out.require_frame("--out", frames.len())?;
+    out.require_tile("--out", args.tile.is_some())?;
     if let Some(t) = &stats_out {
         t.require_frame("--stats-json", frames.len())?;
+        t.require_tile("--stats-json", args.tile.is_some())?;
     }
     let pool = prism::render::thread_pool(args.threads.map(usize::from))
         .context("cannot start the worker threads")?;
@@ -156,12 +160,23 @@ pub fn run(args: RenderArgs) -> Result<()> {
         Some(text) => Some(PixelRect::parse_tile(text)?.0),
         None => None,
     };
+    check_outputs(
+        &args,
+        source.files(),
+        &frames,
+        &out,
+        stats_out.as_ref(),
+        tile,
+    )?;
     let mut load_seconds = Some(start.elapsed().as_secs_f64());
     for frame in frames {
         let path = out.path(frame, tile);
-        // Checked before the frame is loaded: a farm's rerun skips what it has cheaply.
-        if args.skip_existing && path.exists() {
-            eprintln!("skipped {} (it exists)", path.display());
+        // Checked before the frame is loaded: a farm's rerun skips what it has cheaply. Only
+        // a file counts: a folder of the name is no image.
+        if args.skip_existing && path.is_file() {
+            if !args.quiet {
+                eprintln!("skipped {} (it exists)", shown_path(&path));
+            }
             continue;
         }
         let frame_start = Instant::now();
@@ -181,6 +196,40 @@ pub fn run(args: RenderArgs) -> Result<()> {
             label,
             load,
         )?;
+    }
+    Ok(())
+}
+
+/// Refuses, before any frame is rendered, an image, sidecar or statistics file that would
+/// land on a file the scene reads or on another output of this command.
+fn check_outputs(
+    args: &RenderArgs,
+    inputs: &[PathBuf],
+    frames: &[u32],
+    out: &OutputTemplate,
+    stats_out: Option<&OutputTemplate>,
+    tile: Option<u32>,
+) -> Result<()> {
+    let mut roles = FileRoles::with_inputs(inputs);
+    let placed = args.region.is_some() || args.tile.is_some();
+    let frame_name = |frame: u32| match frames.len() {
+        1 => String::new(),
+        _ => format!(" of frame {frame}"),
+    };
+    for &frame in frames {
+        let image = out.path(frame, tile);
+        roles.claim("--out", &image, format!("the image{}", frame_name(frame)))?;
+        if placed && ImageFormat::from_path(&image)? != ImageFormat::Png {
+            let sidecar = prism::render::sidecar_path(&image);
+            let what = format!("the placement sidecar{}", frame_name(frame));
+            roles.claim("--out", &sidecar, what)?;
+        }
+    }
+    if let Some(stats) = stats_out {
+        for &frame in frames {
+            let what = format!("the statistics{}", frame_name(frame));
+            roles.claim("--stats-json", &stats.path(frame, tile), what)?;
+        }
     }
     Ok(())
 }
@@ -292,9 +341,13 @@ fn render_frame(
     let settings = plan.settings;
     let format = ImageFormat::from_path(path)?;
     // Claim the output file first: an unwritable path fails now, not after the render.
+    create_parent_folders(path, args.quiet)?;
     let pending = PendingFile::create(path)?;
     let stats_file = match stats_path {
-        Some(path) => Some(PendingFile::create(path)?),
+        Some(path) => {
+            create_parent_folders(path, args.quiet)?;
+            Some(PendingFile::create(path)?)
+        }
         None => None,
     };
 
@@ -356,24 +409,23 @@ fn render_frame(
         Some(p) => format!("{} of {}×{}", p.rect, settings.width, settings.height),
         None => format!("{}×{}", settings.width, settings.height),
     };
-    eprintln!(
-        "rendered {} ({what}, {} thread{}) in {:.3} s: {:.2} samples per pixel, {} passes, \
-         {:.1} M rays/s ({} primary, {} shadow, {} secondary)",
-        path.display(),
-        pool.current_num_threads(),
-        if pool.current_num_threads() == 1 {
-            ""
-        } else {
-            "s"
-        },
-        wall,
-        job.samples_per_pixel(),
-        job.passes_done(),
-        rays.total() as f64 / wall / 1e6,
-        rays.primary,
-        rays.shadow,
-        rays.secondary,
-    );
+    if !args.quiet {
+        let threads = pool.current_num_threads();
+        let passes = job.passes_done();
+        eprintln!(
+            "rendered {} ({what}, {threads} thread{}) in {:.3} s: {:.2} samples per pixel, \
+             {passes} pass{}, {:.1} M rays/s ({} primary, {} shadow, {} secondary)",
+            shown_path(&path),
+            if threads == 1 { "" } else { "s" },
+            wall,
+            job.samples_per_pixel(),
+            if passes == 1 { "" } else { "es" },
+            rays.total() as f64 / wall / 1e6,
+            rays.primary,
+            rays.shadow,
+            rays.secondary,
+        );
+    }
     let stats = RenderStats {
         scene: args
             .scene
@@ -403,7 +455,9 @@ fn render_frame(
         peak_memory_bytes: peak_memory_bytes(),
         complete: interrupted.is_none(),
     };
-    eprintln!("{}", stats.lines());
+    if !args.quiet {
+        eprintln!("{}", stats.lines());
+    }
     if let Some(file) = stats_file {
         file.finish_bytes(stats.to_json().as_bytes())?;
     }

@@ -3,8 +3,9 @@
 
 use super::render::BadOption;
 use anyhow::{Result, bail};
-use image::DynamicImage;
-use prism::render::{ImageFormat, OutputOptions, PendingFile, read_image, stitch};
+use prism::messages::shown_path;
+use prism::render::{ImageFormat, OutputOptions, PendingFile, PixelType};
+use prism::render::{plan_stitch, read_image_info, read_pixels};
 use std::path::PathBuf;
 
 #[derive(clap::Args, Debug)]
@@ -44,40 +45,47 @@ pub fn run(args: StitchArgs) -> Result<()> {
     // Claimed first: an unwritable output fails before the tiles are read.
     let pending = PendingFile::create(&args.out)?;
     let max_side = *prism::limits::IMAGE_SIDE.end();
-    let mut tiles = Vec::with_capacity(args.tiles.len());
+    // The headers first: a set that cannot make a frame is refused before any pixel is
+    // decoded, and memory holds the frame and one tile at a time.
+    let mut infos = Vec::with_capacity(args.tiles.len());
     for path in &args.tiles {
-        tiles.push((path.display().to_string(), read_image(path, max_side)?));
+        infos.push((shown_path(path), read_image_info(path, max_side)?));
     }
-    let (frame, _) = stitch(&tiles)?;
-    let fits = match &frame {
-        DynamicImage::ImageRgb32F(_) => format.is_hdr(),
-        DynamicImage::ImageRgb16(_) => format == ImageFormat::Png,
-        _ => !format.is_hdr(),
+    let plan = plan_stitch(&infos, max_side)?;
+    let fits = match plan.pixels {
+        PixelType::Rgb32F => format.is_hdr(),
+        PixelType::Rgb16 => format == ImageFormat::Png,
+        PixelType::Rgb8 => !format.is_hdr(),
     };
     if !fits {
         bail!(BadOption(format!(
             "{}: a {} file cannot hold the tiles' {} pixels unchanged; name a {}",
-            args.out.display(),
+            shown_path(&args.out),
             format.name(),
-            match &frame {
-                DynamicImage::ImageRgb32F(_) => "float",
-                DynamicImage::ImageRgb16(_) => "16-bit",
-                _ => "8-bit",
+            match plan.pixels {
+                PixelType::Rgb32F => "float",
+                PixelType::Rgb16 => "16-bit",
+                PixelType::Rgb8 => "8-bit",
             },
-            match &frame {
-                DynamicImage::ImageRgb32F(_) => ".exr or .pfm file",
-                DynamicImage::ImageRgb16(_) => ".png file",
-                _ => ".png or .jpg file",
+            match plan.pixels {
+                PixelType::Rgb32F => ".exr or .pfm file",
+                PixelType::Rgb16 => ".png file",
+                PixelType::Rgb8 => ".png or .jpg file",
             }
         )));
+    }
+    let mut frame = plan.blank();
+    for (i, (path, (name, info))) in args.tiles.iter().zip(&infos).enumerate() {
+        let tile = read_pixels(path, info)?;
+        plan.paste(&mut frame, i, name, &tile)?;
     }
     let (w, h) = (frame.width(), frame.height());
     let path = pending.finish_image(&frame, format, &options, None)?;
     if !args.quiet {
         eprintln!(
             "stitched {} tiles into {} ({w}×{h})",
-            tiles.len(),
-            path.display()
+            infos.len(),
+            shown_path(&path)
         );
     }
     Ok(())

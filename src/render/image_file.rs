@@ -11,8 +11,8 @@ use super::output::{OutputError, PendingFile};
 use super::region::PixelRect;
 use crate::color::{Encoding, Transfer};
 use crate::messages::{io_message, shown};
-use image::{DynamicImage, ImageBuffer, Rgb};
-use std::io::{BufRead, BufReader, BufWriter, Read, Write};
+use image::{DynamicImage, ImageBuffer};
+use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
 /// The keyword of the PNG text chunk (and the first word of a sidecar's line) that records
@@ -201,7 +201,9 @@ impl PendingFile {
         let written = self.commit(|file| {
             let mut writer = BufWriter::new(file);
             match format {
-                ImageFormat::Png => write_png(&mut writer, image, placement)?,
+                ImageFormat::Png => {
+                    write_png(&mut writer, image, options.encoding.transfer, placement)?
+                }
                 ImageFormat::Jpeg => {
                     let encoder =
                         image::codecs::jpeg::JpegEncoder::new_with_quality(&mut writer, quality);
@@ -234,15 +236,26 @@ fn image_message(e: image::ImageError) -> String {
     }
 }
 
-/// A PNG of the image's own depth, with the placement as a text chunk.
+/// A PNG of the image's own depth, tagged with its transfer curve (so that viewers show a
+/// linear file as linear, not as sRGB), with the placement as a text chunk.
 fn write_png(
     writer: &mut impl Write,
     image: &DynamicImage,
+    transfer: Transfer,
     placement: Option<Placement>,
 ) -> Result<(), String> {
     let (w, h) = (image.width(), image.height());
     let mut encoder = png::Encoder::new(writer, w, h);
     encoder.set_color(png::ColorType::Rgb);
+    match transfer {
+        // gAMA 1.0: the stored values are proportional to light.
+        Transfer::Linear => encoder.set_source_gamma(png::ScaledFloat::new(1.0)),
+        // The sRGB chunk, with the gAMA it implies for readers that know only that.
+        Transfer::Srgb => {
+            encoder.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
+            encoder.set_source_gamma(png::ScaledFloat::from_scaled(45455));
+        }
+    }
     let data: Vec<u8> = match image {
         DynamicImage::ImageRgb16(buffer) => {
             encoder.set_depth(png::BitDepth::Sixteen);
@@ -286,194 +299,12 @@ fn write_pfm(writer: &mut impl Write, image: &image::Rgb32FImage) -> Result<(), 
     Ok(())
 }
 
-/// An image file read back (by `prism stitch`), with its placement if it records one.
-pub struct ReadImage {
-    /// The pixels: RGB 8 or 16 bits, or 32-bit float.
-    pub image: DynamicImage,
-    /// Its format.
-    pub format: ImageFormat,
-    /// Where it lies in its frame, from its text chunk or its sidecar.
-    pub placement: Option<Placement>,
-}
-
-/// Why an image file cannot be read back.
-#[derive(Debug, thiserror::Error)]
-#[error("{}: {reason}", path.display())]
-pub struct ReadError {
-    /// The file.
-    pub path: PathBuf,
-    /// Why, in words.
-    pub reason: String,
-}
-
-/// Reads an image that prism wrote (PNG of 8 or 16 bits, JPEG, OpenEXR, PFM), refusing
-/// one larger than `max_side` on a side before its pixels are decoded.
-pub fn read_image(path: &Path, max_side: u32) -> Result<ReadImage, ReadError> {
-    let fail = |reason: String| ReadError {
-        path: path.to_path_buf(),
-        reason,
-    };
-    let format = ImageFormat::from_path(path).map_err(|e| match e {
-        OutputError::Format { .. } => fail("not a PNG, JPEG, EXR or PFM file name".into()),
-        other => fail(other.to_string()),
-    })?;
-    let file = std::fs::File::open(path).map_err(|e| fail(io_message(&e)))?;
-    let too_large = |w: u32, h: u32| {
-        fail(format!(
-            "{w}×{h} is larger than the {max_side} pixels a side a frame may have"
-        ))
-    };
-    let mut placement_text = None;
-    let image = match format {
-        ImageFormat::Png => {
-            let mut decoder = png::Decoder::new(BufReader::new(file));
-            decoder.set_transformations(png::Transformations::IDENTITY);
-            let mut reader = decoder.read_info().map_err(|e| fail(e.to_string()))?;
-            let info = reader.info();
-            let (w, h) = (info.width, info.height);
-            if w > max_side || h > max_side {
-                return Err(too_large(w, h));
-            }
-            placement_text = info
-                .uncompressed_latin1_text
-                .iter()
-                .find(|t| t.keyword == PLACEMENT_KEY)
-                .map(|t| t.text.clone());
-            if info.color_type != png::ColorType::Rgb {
-                return Err(fail(format!(
-                    "a {:?} PNG; prism writes RGB PNGs",
-                    info.color_type
-                )));
-            }
-            let depth = info.bit_depth;
-            let mut data = vec![0; reader.output_buffer_size().ok_or_else(|| too_large(w, h))?];
-            reader
-                .next_frame(&mut data)
-                .map_err(|e| fail(e.to_string()))?;
-            match depth {
-                png::BitDepth::Eight => DynamicImage::ImageRgb8(
-                    ImageBuffer::from_raw(w, h, data).ok_or_else(|| fail("short data".into()))?,
-                ),
-                png::BitDepth::Sixteen => {
-                    let values = data
-                        .chunks_exact(2)
-                        .map(|b| u16::from_be_bytes([b[0], b[1]]))
-                        .collect();
-                    DynamicImage::ImageRgb16(
-                        ImageBuffer::from_raw(w, h, values)
-                            .ok_or_else(|| fail("short data".into()))?,
-                    )
-                }
-                other => return Err(fail(format!("a {other:?}-bit PNG; prism writes 8 or 16"))),
-            }
-        }
-        ImageFormat::Pfm => DynamicImage::ImageRgb32F(read_pfm(file, max_side).map_err(fail)?),
-        ImageFormat::Jpeg | ImageFormat::Exr => {
-            let mut reader = image::ImageReader::new(BufReader::new(file));
-            reader.set_format(match format {
-                ImageFormat::Jpeg => image::ImageFormat::Jpeg,
-                _ => image::ImageFormat::OpenExr,
-            });
-            let mut limits = image::Limits::default();
-            limits.max_image_width = Some(max_side);
-            limits.max_image_height = Some(max_side);
-            reader.limits(limits);
-            let image = reader.decode().map_err(|e| fail(image_message(e)))?;
-            match format {
-                ImageFormat::Jpeg => DynamicImage::ImageRgb8(image.into_rgb8()),
-                _ => DynamicImage::ImageRgb32F(image.into_rgb32f()),
-            }
-        }
-    };
-    // A PNG records its placement in itself; only the other formats have sidecars.
-    if placement_text.is_none() && format != ImageFormat::Png {
-        let sidecar = sidecar_path(path);
-        if let Ok(text) = std::fs::read_to_string(&sidecar) {
-            let line = text.lines().next().unwrap_or_default();
-            placement_text = Some(
-                line.strip_prefix(PLACEMENT_KEY)
-                    .and_then(|rest| rest.strip_prefix(':'))
-                    .map(|t| t.trim().to_string())
-                    .ok_or_else(|| {
-                        fail(format!(
-                            "its sidecar {} does not begin \"{PLACEMENT_KEY}:\"",
-                            sidecar.display()
-                        ))
-                    })?,
-            );
-        }
-    }
-    let placement = match placement_text {
-        None => None,
-        Some(text) => {
-            let (rect, frame_width, frame_height) =
-                PixelRect::parse_placement(&text).map_err(|e| fail(e.to_string()))?;
-            Some(Placement {
-                rect,
-                frame_width,
-                frame_height,
-            })
-        }
-    };
-    Ok(ReadImage {
-        image,
-        format,
-        placement,
-    })
-}
-
-/// A Portable Float Map (RGB, either byte order), as an image from the top row down.
-fn read_pfm(file: std::fs::File, max_side: u32) -> Result<image::Rgb32FImage, String> {
-    let mut reader = BufReader::new(file);
-    let mut words = Vec::new();
-    // The header is three whitespace-separated words after "PF": width, height, scale.
-    while words.len() < 4 {
-        let mut line = String::new();
-        if reader.read_line(&mut line).map_err(|e| io_message(&e))? == 0 || line.len() > 256 {
-            return Err("not a PFM file (its header ends early)".into());
-        }
-        words.extend(line.split_whitespace().map(str::to_string));
-    }
-    if words[0] != "PF" {
-        return Err("not an RGB PFM file (it does not begin \"PF\")".into());
-    }
-    let bad = || "a PFM header with a bad width, height or scale".to_string();
-    let w: u32 = words[1].parse().map_err(|_| bad())?;
-    let h: u32 = words[2].parse().map_err(|_| bad())?;
-    let scale: f32 = words[3].parse().map_err(|_| bad())?;
-    if w == 0 || h == 0 || !scale.is_finite() || scale == 0.0 {
-        return Err(bad());
-    }
-    if w > max_side || h > max_side {
-        return Err(format!("{w}×{h} is larger than {max_side} pixels a side"));
-    }
-    let row = w as usize * 3;
-    let mut bytes = vec![0u8; row * 4 * h as usize];
-    reader
-        .read_exact(&mut bytes)
-        .map_err(|_| "the PFM file is shorter than its header says".to_string())?;
-    let value = |b: &[u8]| {
-        let b = [b[0], b[1], b[2], b[3]];
-        if scale < 0.0 {
-            f32::from_le_bytes(b)
-        } else {
-            f32::from_be_bytes(b)
-        }
-    };
-    let mut raw = vec![0f32; row * h as usize];
-    for (y, src) in bytes.chunks_exact(row * 4).enumerate() {
-        let dst = &mut raw[(h as usize - 1 - y) * row..][..row];
-        for (d, s) in dst.iter_mut().zip(src.chunks_exact(4)) {
-            *d = value(s);
-        }
-    }
-    Ok(ImageBuffer::<Rgb<f32>, _>::from_raw(w, h, raw).expect("size"))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::render::read_image;
     use glam::Vec3;
+    use std::io::BufReader;
 
     /// A 3×2 film with one subsample per pixel, one of them brighter than white.
     fn film() -> Accumulator {
@@ -589,6 +420,37 @@ mod tests {
         assert_eq!(
             sixteen.image.as_rgb16().unwrap().get_pixel(1, 0).0[0],
             16384
+        );
+        // A PNG says which curve its values follow.
+        let info = |name: &str| {
+            let file = std::fs::File::open(dir.path().join(name)).unwrap();
+            let reader = png::Decoder::new(BufReader::new(file)).read_info().unwrap();
+            (reader.info().gama_chunk, reader.info().srgb)
+        };
+        assert_eq!(info("a.png"), (Some(png::ScaledFloat::new(1.0)), None));
+        let srgb = OutputOptions {
+            encoding: Encoding {
+                transfer: Transfer::Srgb,
+                exposure: 0.0,
+            },
+            ..OutputOptions::default()
+        };
+        let path = dir.path().join("s.png");
+        PendingFile::create(&path)
+            .unwrap()
+            .finish_image(
+                &encode(&acc, ImageFormat::Png, &srgb),
+                ImageFormat::Png,
+                &srgb,
+                None,
+            )
+            .unwrap();
+        assert_eq!(
+            info("s.png"),
+            (
+                Some(png::ScaledFloat::from_scaled(45455)),
+                Some(png::SrgbRenderingIntent::Perceptual)
+            )
         );
         // Too large for the caller's limit: refused before decoding.
         let e = read_image(&dir.path().join("a.png"), 2).err().unwrap();

@@ -6,6 +6,7 @@ mod accumulator;
 mod compare;
 mod heat_map;
 mod image_file;
+mod image_read;
 mod output;
 mod pass;
 mod progressive;
@@ -17,15 +18,17 @@ pub use accumulator::{Accumulator, PixelSum, luminance, to_8bit};
 pub use compare::fraction_differing;
 pub use heat_map::{ERROR_SCALE, Legend, View, mean_error, scale_color, write_view_rgba8};
 pub use image_file::{
-    BitDepth, ImageFormat, OutputOptions, PLACEMENT_KEY, Placement, ReadError, ReadImage, encode,
-    read_image, sidecar_path,
+    BitDepth, ImageFormat, OutputOptions, PLACEMENT_KEY, Placement, encode, sidecar_path,
+};
+pub use image_read::{
+    ImageInfo, PixelType, ReadError, ReadImage, read_image, read_image_info, read_pixels,
 };
 pub use output::{OutputError, PendingFile, remove_pending_files, write_bytes, write_png};
 pub use pass::{BAND_ROWS, PassStats, render_pass};
 pub use progressive::{PassOutcome, ProgressiveRender};
 pub use region::{PixelRect, RegionError, adaptive_margin};
 pub use settings::{AdaptiveSettings, DEFAULT_MIN_WEIGHT, RenderSettings, SettingsError};
-pub use stitch::{StitchError, stitch};
+pub use stitch::{StitchError, StitchPlan, plan_stitch, stitch};
 
 use crate::camera::Camera;
 use crate::scene::PreparedScene;

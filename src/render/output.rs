@@ -2,6 +2,11 @@
 //! never leaves a broken file: the data goes to a temporary file beside the target, which is
 //! renamed over it only when complete. A symbolic link is followed, and its target replaced;
 //! a device or FIFO (`/dev/null`, a pipe) is written directly, never replaced.
+//!
+//! The temporary file exists only while the data is written, not while a render runs, so a
+//! process killed mid-render (SIGKILL, out of memory) leaves nothing; one killed in the
+//! moment of writing leaves `.NAME.PID-N.tmp`, which the next write of the same file removes
+//! once no process of that number runs.
 
 use super::image_file::ImageFormat;
 use crate::messages::io_message;
@@ -16,7 +21,7 @@ use thiserror::Error;
 #[derive(Debug, Error)]
 pub enum OutputError {
     /// The file cannot be created here.
-    #[error("{}: cannot write here: {reason}", path.display())]
+    #[error("{}: cannot write here: {reason}", crate::messages::shown_path(path))]
     Create {
         /// The file.
         path: PathBuf,
@@ -24,7 +29,10 @@ pub enum OutputError {
         reason: String,
     },
     /// Writing it failed part-way (nothing is left behind).
-    #[error("{}: failed while writing: {reason}", path.display())]
+    #[error(
+        "{}: failed while writing: {reason}",
+        crate::messages::shown_path(path)
+    )]
     Write {
         /// The file.
         path: PathBuf,
@@ -33,7 +41,7 @@ pub enum OutputError {
     },
     #[error(
         "{}: the extension names the format: .png, .jpg (or .jpeg), .exr or .pfm (got {})",
-        path.display(),
+        crate::messages::shown_path(path),
         match extension { Some(e) => format!("\".{e}\""), None => "no extension".into() }
     )]
     /// The path's extension names no format prism writes.
@@ -44,7 +52,7 @@ pub enum OutputError {
         extension: Option<String>,
     },
     /// Options the file's format cannot honour (16 bits in a JPEG, a curve in an EXR).
-    #[error("{}: {reason}", path.display())]
+    #[error("{}: {reason}", crate::messages::shown_path(path))]
     Options {
         /// The file asked for.
         path: PathBuf,
@@ -55,9 +63,13 @@ pub enum OutputError {
 
 /// How a target is written.
 enum Target {
-    /// A regular file (or none yet): written to `temp`, then renamed onto `real`, the
-    /// path after following symbolic links.
-    Replace { real: PathBuf, temp: PathBuf },
+    /// A regular file (or none yet): written to a temporary file in `dir` named after
+    /// `name`, then renamed onto `real`, the path after following symbolic links.
+    Replace {
+        real: PathBuf,
+        dir: PathBuf,
+        name: String,
+    },
     /// A device (opened at once, so a refusal comes before the render) or a FIFO (opened
     /// when the data is ready: opening one waits for a reader), written in place.
     Direct(Option<File>),
@@ -68,6 +80,83 @@ enum Target {
 pub struct PendingFile {
     path: PathBuf,
     target: Target,
+}
+
+/// The temporary file of a write in progress: removed when dropped unless renamed.
+struct TempFile(PathBuf);
+
+impl TempFile {
+    /// A new, empty temporary file for `name` in `dir`, `.NAME.PID-N.tmp`.
+    fn create(dir: &Path, name: &str) -> std::io::Result<(Self, File)> {
+        static SERIAL: AtomicU64 = AtomicU64::new(0);
+        loop {
+            let serial = SERIAL.fetch_add(1, Ordering::Relaxed);
+            let temp = dir.join(format!(".{name}.{}-{serial}.tmp", std::process::id()));
+            let mut options = OpenOptions::new();
+            options.write(true).create_new(true);
+            // The finished image is an ordinary file, readable like any other.
+            #[cfg(unix)]
+            std::os::unix::fs::OpenOptionsExt::mode(&mut options, 0o644);
+            match options.open(&temp) {
+                Ok(file) => {
+                    register(&temp);
+                    return Ok((Self(temp), file));
+                }
+                Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => continue,
+                Err(e) => return Err(e),
+            }
+        }
+    }
+
+    /// Renames it onto `target`; nothing is left to remove.
+    fn rename_onto(self, target: &Path) -> std::io::Result<()> {
+        std::fs::rename(&self.0, target)?;
+        unregister(&self.0);
+        std::mem::forget(self);
+        Ok(())
+    }
+}
+
+impl Drop for TempFile {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_file(&self.0);
+        unregister(&self.0);
+    }
+}
+
+/// The process number in a temporary file's name for `name`, `.NAME.PID-N.tmp`, if it is
+/// one.
+fn temp_owner(file_name: &str, name: &str) -> Option<u32> {
+    let rest = file_name
+        .strip_prefix('.')?
+        .strip_prefix(name)?
+        .strip_prefix('.')?
+        .strip_suffix(".tmp")?;
+    let (pid, serial) = rest.split_once('-')?;
+    let digits = |t: &str| !t.is_empty() && t.bytes().all(|b| b.is_ascii_digit());
+    (digits(pid) && digits(serial)).then(|| pid.parse().ok())?
+}
+
+/// Removes the temporary files for `name` in `dir` that writers killed mid-write left: those
+/// of prism's naming whose process no longer runs. Where a process's liveness cannot be
+/// read (no /proc), nothing is removed.
+fn remove_stale_temps(dir: &Path, name: &str) {
+    if !Path::new("/proc/self").exists() {
+        return;
+    }
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let file_name = entry.file_name();
+        let Some(pid) = file_name.to_str().and_then(|f| temp_owner(f, name)) else {
+            continue;
+        };
+        let is_file = entry.file_type().is_ok_and(|t| t.is_file());
+        if is_file && pid != std::process::id() && !Path::new(&format!("/proc/{pid}")).exists() {
+            let _ = std::fs::remove_file(entry.path());
+        }
+    }
 }
 
 /// Temporary files not yet renamed into place, for `remove_pending_files`.
@@ -158,28 +247,26 @@ impl PendingFile {
         };
         match std::fs::metadata(&dir) {
             Ok(meta) if meta.is_dir() => {}
-            Ok(_) => return Err(err(format!("{} is not a directory", dir.display()))),
-            Err(e) => return Err(err(format!("{}: {}", dir.display(), io_message(&e)))),
-        }
-        static SERIAL: AtomicU64 = AtomicU64::new(0);
-        let temp = loop {
-            let serial = SERIAL.fetch_add(1, Ordering::Relaxed);
-            let temp = dir.join(format!(".{name}.{}-{serial}.tmp", std::process::id()));
-            let mut options = OpenOptions::new();
-            options.write(true).create_new(true);
-            // The finished image is an ordinary file, readable like any other.
-            #[cfg(unix)]
-            std::os::unix::fs::OpenOptionsExt::mode(&mut options, 0o644);
-            match options.open(&temp) {
-                Ok(_) => break temp,
-                Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => continue,
-                Err(e) => return Err(err(io_message(&e))),
+            Ok(_) => {
+                return Err(err(format!(
+                    "{} is not a directory",
+                    crate::messages::shown_path(&dir)
+                )));
             }
-        };
-        register(&temp);
+            Err(e) => {
+                return Err(err(format!(
+                    "{}: {}",
+                    crate::messages::shown_path(&dir),
+                    io_message(&e)
+                )));
+            }
+        }
+        // A probe, removed at once: the directory must take a new file now, but the one
+        // written waits until the data is ready.
+        TempFile::create(&dir, &name).map_err(|e| err(io_message(&e)))?;
         Ok(Self {
             path: path.to_path_buf(),
-            target: Target::Replace { real, temp },
+            target: Target::Replace { real, dir, name },
         })
     }
 
@@ -226,29 +313,15 @@ impl PendingFile {
                     .map_err(|e| fail(io_message(&e)))?;
                 fill(&file).map_err(fail)?;
             }
-            Target::Replace { real, temp } => {
-                let file = OpenOptions::new()
-                    .write(true)
-                    .open(temp)
-                    .map_err(|e| fail(io_message(&e)))?;
+            Target::Replace { real, dir, name } => {
+                remove_stale_temps(dir, name);
+                let (temp, file) = TempFile::create(dir, name).map_err(|e| fail(io_message(&e)))?;
                 fill(&file).map_err(fail)?;
                 file.sync_all().map_err(|e| fail(io_message(&e)))?;
-                std::fs::rename(temp, real).map_err(|e| fail(io_message(&e)))?;
-                unregister(temp);
+                temp.rename_onto(real).map_err(|e| fail(io_message(&e)))?;
             }
         }
         Ok(path)
-    }
-}
-
-impl Drop for PendingFile {
-    /// An abandoned write leaves nothing behind (after a rename there is nothing to remove).
-    fn drop(&mut self) {
-        if let Target::Replace { temp, .. } = &self.target
-            && std::fs::remove_file(temp).is_ok()
-        {
-            unregister(temp);
-        }
     }
 }
 
@@ -308,6 +381,49 @@ mod tests {
         write_bytes(&path, b"a,b\n1,2\n").unwrap();
         assert_eq!(std::fs::read(&path).unwrap(), b"a,b\n1,2\n");
         assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+    }
+
+    #[test]
+    fn nothing_is_on_disk_while_the_render_runs() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("out.png");
+        let pending = PendingFile::create(&path).unwrap();
+        // A process killed now (SIGKILL runs no destructor) would leave nothing.
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+        pending.finish_bytes(b"x").unwrap();
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+    }
+
+    #[test]
+    fn stale_temporary_files_of_dead_writers_are_removed() {
+        let dir = tempfile::tempdir().unwrap();
+        // Above Linux's largest process number: no such process runs.
+        let dead = "4294967295";
+        let names = [
+            format!(".out.png.{dead}-0.tmp"),
+            format!(".out.png.{}-77.tmp", std::process::id()),
+            format!(".other.png.{dead}-0.tmp"),
+            format!(".out.png.{dead}-x.tmp"),
+            "out.png.tmp".to_string(),
+        ];
+        for n in &names {
+            std::fs::write(dir.path().join(n), b"left").unwrap();
+        }
+        write_bytes(&dir.path().join("out.png"), b"new").unwrap();
+        let left = |n: &str| dir.path().join(n).exists();
+        assert_eq!(left(&names[0]), !Path::new("/proc/self").exists());
+        for kept in &names[1..] {
+            assert!(left(kept), "{kept} is not a stale file of out.png");
+        }
+        assert_eq!(temp_owner(".a.png.12-3.tmp", "a.png"), Some(12));
+        for not_ours in [
+            ".a.png.12.tmp",
+            ".a.png.-3.tmp",
+            ".b.png.12-3.tmp",
+            "a.png.12-3.tmp",
+        ] {
+            assert_eq!(temp_owner(not_ours, "a.png"), None, "{not_ours}");
+        }
     }
 
     #[test]

@@ -1,7 +1,8 @@
 //! Assembling a frame from tiles rendered apart (`prism stitch`): each tile records its
 //! place in the frame, and the tiles must cover the frame once, with one pixel type.
 
-use super::image_file::{Placement, ReadImage};
+use super::image_file::Placement;
+use super::image_read::{ImageInfo, PixelType, ReadImage};
 use super::region::PixelRect;
 use image::DynamicImage;
 use thiserror::Error;
@@ -66,6 +67,34 @@ pub enum StitchError {
         /// Its placement.
         rb: PixelRect,
     },
+    /// A frame larger than any prism renders.
+    #[error("{name} is a tile of a {width}×{height} frame: at most {max_side} pixels a side")]
+    FrameTooLarge {
+        /// The tile that says so.
+        name: String,
+        /// The frame's width.
+        width: u32,
+        /// The frame's height.
+        height: u32,
+        /// The largest side.
+        max_side: u32,
+    },
+    /// A tile whose pixels are not what its header said (it changed while being read).
+    #[error("{0}: its pixels are not what its header said (did it change while stitching?)")]
+    Changed(String),
+    /// A float tile holding a NaN or infinite value.
+    #[error(
+        "{name}: pixel ({x}, {y}) of the frame is not a finite number; a render writes none, \
+         so the tile is damaged"
+    )]
+    NotFinite {
+        /// The tile.
+        name: String,
+        /// The pixel's column in the frame.
+        x: u32,
+        /// Its row.
+        y: u32,
+    },
     /// Pixels no tile covers.
     #[error(
         "the tiles cover {covered} of the frame's {total} pixels: nothing covers row {row} \
@@ -85,27 +114,41 @@ pub enum StitchError {
     },
 }
 
-/// The name of an image's pixel type, in messages.
-fn pixel_type(image: &DynamicImage) -> &'static str {
-    match image {
-        DynamicImage::ImageRgb8(_) => "8-bit RGB",
-        DynamicImage::ImageRgb16(_) => "16-bit RGB",
-        DynamicImage::ImageRgb32F(_) => "32-bit float RGB",
-        _ => "other",
-    }
+/// How tiles make a frame, decided from their headers alone (no pixel is decoded before
+/// the set is known to cover the frame once): the frame's size and pixel type and each
+/// tile's place, in the order given.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StitchPlan {
+    /// The whole frame: its rectangle and size.
+    pub frame: Placement,
+    /// The pixel type every tile holds.
+    pub pixels: PixelType,
+    /// Where each tile goes, in the order given.
+    pub rects: Vec<PixelRect>,
 }
 
-/// The frame that `tiles` (each with the name it is known by) make, and its size: refused
-/// if any tile is unplaced or of the wrong size, if the tiles disagree on the frame or the
-/// pixel type, overlap, or leave a pixel uncovered.
-pub fn stitch(tiles: &[(String, ReadImage)]) -> Result<(DynamicImage, Placement), StitchError> {
+/// The plan by which `tiles` (each with the name it is known by) make a frame of at most
+/// `max_side` pixels a side: refused if any tile is unplaced or of the wrong size, if the
+/// tiles disagree on the frame or the pixel type, overlap, or leave a pixel uncovered.
+pub fn plan_stitch(
+    tiles: &[(String, ImageInfo)],
+    max_side: u32,
+) -> Result<StitchPlan, StitchError> {
     let (first_name, first) = tiles.first().ok_or(StitchError::Empty)?;
-    let frame_of = |name: &str, tile: &ReadImage| {
+    let frame_of = |name: &str, tile: &ImageInfo| {
         tile.placement
             .ok_or_else(|| StitchError::Unplaced(name.to_string()))
     };
     let frame = frame_of(first_name, first)?;
     let (fw, fh) = (frame.frame_width, frame.frame_height);
+    if fw > max_side || fh > max_side {
+        return Err(StitchError::FrameTooLarge {
+            name: first_name.clone(),
+            width: fw,
+            height: fh,
+            max_side,
+        });
+    }
     let mut placed: Vec<(&str, PixelRect)> = Vec::with_capacity(tiles.len());
     for (name, tile) in tiles {
         let p = frame_of(name, tile)?;
@@ -117,21 +160,19 @@ pub fn stitch(tiles: &[(String, ReadImage)]) -> Result<(DynamicImage, Placement)
                 ours: (fw, fh),
             });
         }
-        let (theirs, ours) = (pixel_type(&tile.image), pixel_type(&first.image));
-        if theirs != ours || tile.format != first.format {
+        if tile.pixels != first.pixels || tile.format != first.format {
             return Err(StitchError::PixelMismatch {
                 name: name.clone(),
-                theirs,
+                theirs: tile.pixels.name(),
                 first: first_name.clone(),
-                ours,
+                ours: first.pixels.name(),
             });
         }
-        let (w, h) = (tile.image.width(), tile.image.height());
-        if (w, h) != (p.rect.width(), p.rect.height()) {
+        if (tile.width, tile.height) != (p.rect.width(), p.rect.height()) {
             return Err(StitchError::WrongSize {
                 name: name.clone(),
-                width: w,
-                height: h,
+                width: tile.width,
+                height: tile.height,
                 rect: p.rect,
             });
         }
@@ -169,22 +210,78 @@ pub fn stitch(tiles: &[(String, ReadImage)]) -> Result<(DynamicImage, Placement)
             x1,
         });
     }
-    let mut out = match &first.image {
-        DynamicImage::ImageRgb16(_) => DynamicImage::new_rgb16(fw, fh),
-        DynamicImage::ImageRgb32F(_) => DynamicImage::new_rgb32f(fw, fh),
-        _ => DynamicImage::new_rgb8(fw, fh),
-    };
-    for ((_, tile), (_, rect)) in tiles.iter().zip(&placed) {
-        copy_into(&mut out, &tile.image, rect.x0, rect.y0);
-    }
-    Ok((
-        out,
-        Placement {
+    Ok(StitchPlan {
+        frame: Placement {
             rect: PixelRect::full(fw, fh),
             frame_width: fw,
             frame_height: fh,
         },
-    ))
+        pixels: first.pixels,
+        rects: placed.into_iter().map(|(_, r)| r).collect(),
+    })
+}
+
+impl StitchPlan {
+    /// The frame, black, to paste the tiles into.
+    pub fn blank(&self) -> DynamicImage {
+        self.pixels
+            .blank(self.frame.frame_width, self.frame.frame_height)
+    }
+
+    /// Copies tile `index` (known as `name`), decoded, into its place in `frame`; a tile
+    /// that is not as its header said, or that holds a NaN or infinite value (which no
+    /// render writes), is refused.
+    pub fn paste(
+        &self,
+        frame: &mut DynamicImage,
+        index: usize,
+        name: &str,
+        tile: &DynamicImage,
+    ) -> Result<(), StitchError> {
+        let rect = self.rects[index];
+        if PixelType::of(tile) != Some(self.pixels)
+            || (tile.width(), tile.height()) != (rect.width(), rect.height())
+        {
+            return Err(StitchError::Changed(name.to_string()));
+        }
+        if let DynamicImage::ImageRgb32F(t) = tile
+            && let Some((x, y, _)) = t
+                .enumerate_pixels()
+                .find(|(_, _, p)| p.0.iter().any(|v| !v.is_finite()))
+        {
+            return Err(StitchError::NotFinite {
+                name: name.to_string(),
+                x: rect.x0 + x,
+                y: rect.y0 + y,
+            });
+        }
+        copy_into(frame, tile, rect.x0, rect.y0);
+        Ok(())
+    }
+}
+
+/// The frame that decoded `tiles` make (each with the name it is known by): `plan_stitch`
+/// and `StitchPlan::paste` for images already in memory.
+pub fn stitch(tiles: &[(String, ReadImage)]) -> Result<(DynamicImage, Placement), StitchError> {
+    let infos: Vec<(String, ImageInfo)> = tiles
+        .iter()
+        .map(|(name, t)| {
+            let info = ImageInfo {
+                width: t.image.width(),
+                height: t.image.height(),
+                pixels: PixelType::of(&t.image).unwrap_or(PixelType::Rgb8),
+                format: t.format,
+                placement: t.placement,
+            };
+            (name.clone(), info)
+        })
+        .collect();
+    let plan = plan_stitch(&infos, u32::MAX)?;
+    let mut frame = plan.blank();
+    for (i, (name, tile)) in tiles.iter().enumerate() {
+        plan.paste(&mut frame, i, name, &tile.image)?;
+    }
+    Ok((frame, plan.frame))
 }
 
 /// Copies `tile` into `frame` with its top left at (x, y); both of one pixel type.
@@ -292,6 +389,37 @@ mod tests {
         wrong.1.placement.as_mut().unwrap().rect = PixelRect::parse("0,2,8,6").unwrap();
         let e = stitch(&[tile("0,0,8,2"), wrong]).unwrap_err();
         assert!(matches!(e, StitchError::WrongSize { .. }), "{e}");
+
+        let mut nan = tile("0,3,8,6");
+        let mut float = nan.1.image.to_rgb32f();
+        float.get_pixel_mut(2, 1).0[1] = f32::INFINITY;
+        nan.1.image = DynamicImage::ImageRgb32F(float);
+        let mut top = tile("0,0,8,3");
+        top.1.image = DynamicImage::ImageRgb32F(top.1.image.to_rgb32f());
+        let e = stitch(&[top, nan]).unwrap_err();
+        assert_eq!(
+            e,
+            StitchError::NotFinite {
+                name: "tile 0,3,8,6".into(),
+                x: 2,
+                y: 4
+            }
+        );
+
+        let (name, big) = tile("0,0,8,6");
+        let info = ImageInfo {
+            width: 8,
+            height: 6,
+            pixels: PixelType::Rgb8,
+            format: big.format,
+            placement: Some(Placement {
+                rect: PixelRect::parse("0,0,8,6").unwrap(),
+                frame_width: 16384,
+                frame_height: 16385,
+            }),
+        };
+        let e = plan_stitch(&[(name, info)], 16384).unwrap_err();
+        assert!(matches!(e, StitchError::FrameTooLarge { .. }), "{e}");
 
         let mut unplaced = tile("0,3,8,6");
         unplaced.1.placement = None;

@@ -556,6 +556,8 @@ fn entry_mut(item: Option<&mut Item>, index: usize) -> Option<&mut dyn TableLike
 /// frame is 0).
 pub struct SceneFrames {
     kind: FramesKind,
+    /// The files the first frame read, the scene file first.
+    files: Vec<PathBuf>,
 }
 
 enum FramesKind {
@@ -570,7 +572,8 @@ impl SceneFrames {
     /// The scene file at `path`, animated or not, with its first frame validated (as
     /// `load_scene` does).
     pub fn load(path: &Path) -> Result<Self, SceneError> {
-        let loaded = super::load_scene_file(path).result?;
+        let load = super::load_scene_file(path);
+        let loaded = load.result?;
         let kind = match loaded.animation {
             None => FramesKind::Still(loaded.scene),
             Some(animation) => FramesKind::Animated {
@@ -578,14 +581,24 @@ impl SceneFrames {
                 animation,
             },
         };
-        Ok(Self { kind })
+        Ok(Self {
+            kind,
+            files: load.files,
+        })
     }
 
     /// A still scene.
     pub fn fixed(scene: super::Scene) -> Self {
         Self {
             kind: FramesKind::Still(scene),
+            files: Vec::new(),
         }
+    }
+
+    /// The files the scene reads (its first frame), the scene file first; none for a
+    /// scene built in memory.
+    pub fn files(&self) -> &[PathBuf] {
+        &self.files
     }
 
     /// The animation, if the scene has one.

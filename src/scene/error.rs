@@ -7,7 +7,10 @@ use thiserror::Error;
 #[derive(Debug, Error)]
 pub enum SceneError {
     /// The file cannot be read: missing, not a regular file, too large, not UTF-8 text.
-    #[error("{}: cannot read the scene file: {reason}", path.display())]
+    #[error(
+        "{}: cannot read the scene file: {reason}",
+        crate::messages::shown_path(path)
+    )]
     Read {
         /// The file.
         path: PathBuf,
@@ -15,7 +18,7 @@ pub enum SceneError {
         reason: String,
     },
     /// TOML syntax, an unknown or missing field, a value of the wrong type.
-    #[error("{}:{line}:{column}: {message}", path.display())]
+    #[error("{}:{line}:{column}: {message}", crate::messages::shown_path(path))]
     Syntax {
         /// The scene file.
         path: PathBuf,
@@ -27,7 +30,7 @@ pub enum SceneError {
         message: String,
     },
     /// A well-formed value that makes no sense: a negative radius, an eta of zero, …
-    #[error("{}:{line}: {item}: {message}", path.display())]
+    #[error("{}:{line}: {item}: {message}", crate::messages::shown_path(path))]
     Invalid {
         /// The scene file.
         path: PathBuf,
@@ -39,7 +42,7 @@ pub enum SceneError {
         message: String,
     },
     /// A problem at a line of a file the scene reads: a mesh or its material library.
-    #[error("{}:{line}: {message}", path.display())]
+    #[error("{}:{line}: {message}", crate::messages::shown_path(path))]
     Asset {
         /// The mesh or material file.
         path: PathBuf,
