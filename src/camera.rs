@@ -87,10 +87,7 @@ impl Camera {
                 self.aperture
             ));
         }
-        if !(self.focus_distance.is_finite()
-            && self.focus_distance as f64 >= MIN_LENGTH
-            && self.focus_distance as f64 <= MAX_COORDINATE)
-        {
+        if !crate::limits::LENGTH.contains(&self.focus_distance) {
             return Err(format!(
                 "focus distance {} must be a number from {MIN_LENGTH:e} to {MAX_COORDINATE:e}",
                 self.focus_distance

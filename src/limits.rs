@@ -44,6 +44,16 @@ pub const MAX_COORDINATE: f64 = 1.0e12;
 /// square is still a normal f32 number.
 pub const MIN_LENGTH: f64 = 1.0e-12;
 
+/// The lengths an f32 value may have (radii, heights, sizes, the focus distance): from
+/// `MIN_LENGTH` to `MAX_COORDINATE`, both included as the file writes them. The bounds are
+/// rounded to f32 as a typed value is, so `radius = 1e-12` is at the minimum, not below it.
+pub const LENGTH: RangeInclusive<f32> = (MIN_LENGTH as f32)..=(MAX_COORDINATE as f32);
+
+/// The smallest extent a box side or a cone's or cylinder's height may have, as a fraction
+/// of its distance from the camera: 2⁻²⁰, eight steps of f32 at that distance. Thinner,
+/// single precision cannot tell its two faces apart from rounding, and hits on it are noise.
+pub const MIN_RELATIVE_EXTENT: f32 = 1.0 / (1u32 << 20) as f32;
+
 /// An infinite plane is traced as a disc this many times wider than the scene's extent from
 /// the eye: its rim then lies below the horizon by at most 1/PLANE_REACH radians, far less
 /// than a pixel.

@@ -39,6 +39,69 @@ pub fn shown_within(text: &str, max: usize) -> String {
     out
 }
 
+/// The candidate closest to `typed`, if one is close enough to be what was meant (a typo
+/// or a case slip: a normalised edit similarity of at least 0.7, or equal ignoring case).
+pub fn closest<'a>(typed: &str, candidates: impl IntoIterator<Item = &'a str>) -> Option<&'a str> {
+    let lower = typed.to_lowercase();
+    candidates
+        .into_iter()
+        .map(|c| {
+            let score = if c.to_lowercase() == lower {
+                1.0
+            } else {
+                strsim::normalized_damerau_levenshtein(&lower, &c.to_lowercase())
+            };
+            (score, c)
+        })
+        .filter(|(score, _)| *score >= 0.7)
+        .max_by(|a, b| a.0.total_cmp(&b.0))
+        .map(|(_, c)| c)
+}
+
+/// "; did you mean \"X\"?" when a candidate is close to `typed`, else nothing: for the end
+/// of a message about a name that is not known.
+pub fn did_you_mean<'a>(typed: &str, candidates: impl IntoIterator<Item = &'a str>) -> String {
+    match closest(typed, candidates) {
+        Some(c) if c != typed => format!("; did you mean {}?", quoted(c)),
+        _ => String::new(),
+    }
+}
+
+/// A message from the TOML reader (serde's words) in the words of the scene format: "a
+/// number" for f32, "a whole number" for u32, an array's length said plainly, and for an
+/// unknown field the known one it is closest to.
+pub fn plain_type_words(message: &str) -> String {
+    let mut out = message.to_string();
+    for (rust, plain) in [
+        ("f32", "a number"),
+        ("f64", "a number"),
+        ("u8", "a whole number"),
+        ("u16", "a whole number"),
+        ("u32", "a whole number"),
+        ("u64", "a whole number"),
+        ("usize", "a whole number"),
+        ("i32", "a whole number"),
+        ("i64", "a whole number"),
+    ] {
+        out = out.replace(&format!("expected {rust}"), &format!("expected {plain}"));
+    }
+    if let Some(rest) = out.strip_prefix("invalid length ")
+        && let Some((count, expected)) = rest.split_once(", expected an array of ")
+        && count.parse::<usize>().is_ok()
+    {
+        let n = expected.trim();
+        out = format!("this array has {count} values; it must have exactly {n}");
+    }
+    if let Some(rest) = out.strip_prefix("unknown field `")
+        && let Some((field, known)) = rest.split_once('`')
+    {
+        let candidates: Vec<&str> = known.split('`').skip(1).step_by(2).collect();
+        let hint = did_you_mean(field, candidates.iter().copied());
+        out.push_str(&hint);
+    }
+    out
+}
+
 /// A path as it may appear in a message: control characters (a terminal escape typed into
 /// `-o`, a newline) written as escapes, as names from a scene file are; not shortened below
 /// the longest path a system takes.
@@ -81,6 +144,39 @@ mod tests {
         assert_eq!(s.chars().count(), MAX_NAME_CHARS + 1);
         assert!(s.ends_with('…'));
         assert_eq!(quoted("x\ty"), "\"x\\ty\"");
+    }
+
+    #[test]
+    fn near_names_are_suggested() {
+        let known = ["position", "radius", "material", "name"];
+        assert_eq!(closest("raduis", known), Some("radius"));
+        assert_eq!(closest("Material", known), Some("material"));
+        assert_eq!(closest("zzz", known), None);
+        assert_eq!(
+            did_you_mean("matreial", known),
+            "; did you mean \"material\"?"
+        );
+        assert_eq!(did_you_mean("radius", known), "");
+        assert_eq!(
+            did_you_mean("colour", ["color", "width"]),
+            "; did you mean \"color\"?"
+        );
+    }
+
+    #[test]
+    fn serde_words_become_the_formats_words() {
+        assert_eq!(
+            plain_type_words("invalid type: string \"x\", expected f32"),
+            "invalid type: string \"x\", expected a number"
+        );
+        assert_eq!(
+            plain_type_words("invalid length 5, expected an array of 3"),
+            "this array has 5 values; it must have exactly 3"
+        );
+        assert_eq!(
+            plain_type_words("unknown field `raduis`, expected one of `center`, `radius`"),
+            "unknown field `raduis`, expected one of `center`, `radius`; did you mean \"radius\"?"
+        );
     }
 
     #[test]

@@ -216,31 +216,34 @@ fn mirror_box(max_depth: u32) -> String {
     s
 }
 
-/// The counts `prism render` reports: (primary, secondary).
-fn ray_counts(stderr: &str) -> (u64, u64) {
-    let number_before = |word: &str| -> u64 {
-        let end = stderr
-            .find(word)
-            .unwrap_or_else(|| panic!("{word} in {stderr}"));
-        stderr[..end]
-            .trim_end()
-            .rsplit([' ', '('])
-            .next()
-            .unwrap()
-            .parse()
-            .unwrap()
-    };
-    (number_before(" primary"), number_before(" secondary"))
+/// The ray counts a render's `--stats-json` file reports: (primary, secondary).
+fn ray_counts(stats: &Path) -> (u64, u64) {
+    let text = std::fs::read_to_string(stats).unwrap();
+    let json: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let count = |kind: &str| json["rays"][kind].as_u64().unwrap();
+    (count("primary"), count("secondary"))
 }
 
 #[test]
 fn exact_rendering_of_surfaces_that_reflect_and_transmit_stays_within_the_ray_budget() {
     let d = Dir::new();
     let scene = d.write("scene.toml", &mirror_box(64));
-    let out = d.render(&scene, &["--exact", "--aa", "1", "--max-depth", "64"]);
+    let stats = d.path("stats.json");
+    let out = d.render(
+        &scene,
+        &[
+            "--exact",
+            "--aa",
+            "1",
+            "--max-depth",
+            "64",
+            "--stats-json",
+            stats.to_str().unwrap(),
+        ],
+    );
     let e = stderr(&out);
     assert!(out.status.success(), "{e}");
-    let (primary, secondary) = ray_counts(&e);
+    let (primary, secondary) = ray_counts(&stats);
     assert_eq!(primary, 40 * 30);
     let budget = prism::limits::RAY_BUDGET as u64;
     assert!(secondary <= budget * primary, "{secondary} secondary rays");
@@ -520,11 +523,12 @@ fn io_errors_name_their_cause_once_and_no_temporary_file() {
         "render",
         scene.to_str().unwrap(),
         "-o",
-        d.path("missing/out.png").to_str().unwrap(),
+        // A folder that cannot be made (missing ones are): its parent is a file.
+        scene.join("missing/out.png").to_str().unwrap(),
     ]);
     let e = stderr(&out);
     assert_eq!(out.status.code(), Some(2));
-    assert_eq!(e.matches("No such file or directory").count(), 1, "{e}");
+    assert_eq!(e.matches("Not a directory").count(), 1, "{e}");
     assert!(!e.contains(".out.png."), "{e}");
 }
 

@@ -453,6 +453,11 @@ fn target_table<'d>(
     let missing = |what: String| format!("`target` {}: {what}", crate::messages::quoted(target));
     let root = document.as_table_mut();
     if let Some(name) = target.strip_prefix("materials.") {
+        let known: Vec<String> = root
+            .get("materials")
+            .and_then(Item::as_table_like)
+            .map(|m| m.iter().map(|(k, _)| k.to_string()).collect())
+            .unwrap_or_default();
         return root
             .get_mut("materials")
             .and_then(Item::as_table_like_mut)
@@ -460,8 +465,9 @@ fn target_table<'d>(
             .and_then(Item::as_table_like_mut)
             .ok_or_else(|| {
                 missing(format!(
-                    "no material named {}",
-                    crate::messages::quoted(name)
+                    "no material named {}{}",
+                    crate::messages::quoted(name),
+                    crate::messages::did_you_mean(name, known.iter().map(String::as_str))
                 ))
             });
     }
@@ -504,11 +510,16 @@ fn target_table<'d>(
         }
     }
     let Some((table, i)) = found else {
-        return Err(missing(
-            "no such table: a target is camera, render, fog, lights[i], materials.NAME, an \
-             object's name or its table and index (spheres[0])"
-                .into(),
-        ));
+        let names: Vec<String> = OBJECT_TABLES
+            .iter()
+            .flat_map(|table| entries(root.get(table)))
+            .filter_map(|entry| entry.get("name").and_then(Item::as_str).map(str::to_string))
+            .collect();
+        let hint = crate::messages::did_you_mean(target, names.iter().map(String::as_str));
+        return Err(missing(format!(
+            "no such table or object: a target is camera, render, fog, lights[i], \
+             materials.NAME, an object's name or its table and index (spheres[0]){hint}"
+        )));
     };
     Ok(entry_mut(root.get_mut(table), i).expect("it was just found"))
 }

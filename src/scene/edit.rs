@@ -180,7 +180,7 @@ impl Scene {
         let factor = size / shape.size();
         let resized = shape.resized(factor);
         let ok = size.is_finite()
-            && size as f64 >= MIN_LENGTH
+            && size >= *crate::limits::LENGTH.start()
             && resized.size().is_finite()
             && resized.center().abs().max_element() as f64 <= MAX_COORDINATE
             && resized.size() as f64 <= MAX_COORDINATE;

@@ -2,6 +2,7 @@
 //! names the file, the line and the field of every problem.
 
 mod entry;
+mod fixed_array;
 mod meshes;
 mod placement;
 mod solids;
@@ -14,8 +15,9 @@ use crate::appearance::{AreaShape, Background, Falloff, Fog, FogKind, Light, Lig
 use crate::appearance::{ImageTexture, Texture, TextureError, UvTransform};
 use crate::camera::Camera;
 use crate::limits;
-use crate::messages::{number, quoted};
+use crate::messages::{did_you_mean, number, quoted};
 use entry::{EntryDef, entry_label};
+use fixed_array::Fixed;
 use glam::Vec3;
 use placement::Placement;
 use serde::Deserialize;
@@ -25,9 +27,9 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use toml::Spanned;
 
-type V3 = [f32; 3];
+type V3 = Fixed<f32, 3>;
 /// Positions are read in f64 and stored relative to the scene origin (see `Scene`).
-type P3 = [f64; 3];
+type P3 = Fixed<f64, 3>;
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -139,14 +141,14 @@ struct TextureDef {
     #[serde(rename = "type")]
     kind: String,
     path: Option<String>,
-    colors: Option<[V3; 2]>,
+    colors: Option<Fixed<V3, 2>>,
     size: Option<f32>,
     axes: Option<String>,
     width: Option<f32>,
     direction: Option<V3>,
     /// A number (both ways) or [u, v].
     uv_scale: Option<toml::Value>,
-    uv_offset: Option<[f32; 2]>,
+    uv_offset: Option<Fixed<f32, 2>>,
     uv_rotate: Option<f32>,
 }
 
@@ -216,7 +218,7 @@ struct PolygonDef {
 #[serde(deny_unknown_fields)]
 struct TriangleDef {
     name: Option<String>,
-    vertices: [P3; 3],
+    vertices: Fixed<P3, 3>,
     material: Option<String>,
     shadow: Option<bool>,
     translate: Option<P3>,
@@ -229,7 +231,7 @@ struct TriangleDef {
 #[serde(deny_unknown_fields)]
 struct TetrahedronDef {
     name: Option<String>,
-    vertices: [P3; 4],
+    vertices: Fixed<P3, 4>,
     material: Option<String>,
     shadow: Option<bool>,
     translate: Option<P3>,
@@ -484,6 +486,17 @@ fn parse_recorded(
     }
 }
 
+/// A type error's message in the format's words, with the entry it is in named
+/// (`spheres[0] "glass ball": …`) when the error lies inside one.
+fn type_error_message(source: &str, span: Option<Range<usize>>, message: &str) -> String {
+    let plain = crate::messages::plain_type_words(message.trim());
+    let text = crate::messages::shown_within(&plain, 400);
+    match span.and_then(|s| super::spans::entry_at(source, s.start)) {
+        Some(entry) => format!("{entry}: {text}"),
+        None => text,
+    }
+}
+
 /// Validates scene text as a still, its values as written (an `[animation]` table is
 /// passed over: see `parse_recorded`).
 pub(super) fn parse_still(
@@ -499,7 +512,7 @@ pub(super) fn parse_still(
             line,
             column,
             // The parser may quote the file (an unknown key of any length, say).
-            message: crate::messages::shown_within(e.message().trim(), 400),
+            message: type_error_message(source, e.span(), e.message()),
         }
     })?;
     let eye = file.camera.get_ref().eye;
@@ -582,9 +595,9 @@ impl Validator<'_> {
         let v = self.number(at, field, v)?;
         let problem = if v <= 0.0 {
             "be greater than zero"
-        } else if (v as f64) < limits::MIN_LENGTH {
+        } else if v < *limits::LENGTH.start() {
             &format!("be at least {:e}", limits::MIN_LENGTH)
-        } else if v as f64 > limits::MAX_COORDINATE {
+        } else if v > *limits::LENGTH.end() {
             &format!("be at most {:e}", limits::MAX_COORDINATE)
         } else {
             return Ok(v);
@@ -737,8 +750,9 @@ impl Validator<'_> {
                     "type",
                     format!(
                         "unknown light type {} (expected \"point\", \"spot\", \"directional\", \
-                         \"area\" or \"sphere\")",
-                        quoted(other)
+                         \"area\" or \"sphere\"){}",
+                        quoted(other),
+                        did_you_mean(other, ["point", "spot", "directional", "area", "sphere"])
                     ),
                 ));
             }
@@ -848,7 +862,7 @@ impl Validator<'_> {
         };
         Ok(Light {
             kind,
-            color: self.radiance(at, "color", l.color.unwrap_or([1.0; 3]))?,
+            color: self.radiance(at, "color", l.color.unwrap_or(Fixed([1.0; 3])))?,
         })
     }
 
@@ -912,8 +926,8 @@ impl Validator<'_> {
             })
             .collect::<Result<Vec<_>, SceneError>>()?;
         let fog = self.fog(file.fog.as_ref())?;
-        self.check_texel_budget(&file.textures, file.render.as_ref())?;
         let mut images = Images::default();
+        self.check_texel_budget(&file.textures, file.render.as_ref(), &mut images)?;
         let background = self.background(file.render.as_ref(), &mut images)?;
         let textures = file
             .textures
@@ -942,7 +956,11 @@ impl Validator<'_> {
                     self.field_error(
                         &at,
                         "material",
-                        format!("no material named {} (see [materials])", quoted(m)),
+                        format!(
+                            "no material named {} (see [materials]){}",
+                            quoted(m),
+                            did_you_mean(m, materials.keys().map(String::as_str))
+                        ),
                     )
                 })?,
             };
@@ -996,7 +1014,11 @@ impl Validator<'_> {
                     self.field_error(
                         &at,
                         "material",
-                        format!("no material named {} (see [materials])", quoted(name)),
+                        format!(
+                            "no material named {} (see [materials]){}",
+                            quoted(name),
+                            did_you_mean(name, materials.keys().map(String::as_str))
+                        ),
                     )
                 })?),
             };
@@ -1080,7 +1102,10 @@ impl Validator<'_> {
         // The top cap is a position too.
         let mut top = base;
         top[1] += height as f64;
-        self.position(at, "height", top)?;
+        let top = self.position(at, "height", top)?;
+        let distance = relative_base.abs().max(top.abs()).max_element();
+        let extent = top.y - relative_base.y;
+        self.resolvable(at, "height", "the cylinder's height", extent, distance)?;
         let cylinder = ShapeDesc::Cylinder {
             base: relative_base,
             radius: self.length(at, "radius", (d.radius as f64 * a) as f32)?,
@@ -1174,16 +1199,15 @@ impl Validator<'_> {
         })
     }
 
-    /// Refuses the image texture that takes the scene's images past `MAX_SCENE_TEXELS`,
-    /// from their headers, before any is decoded. (A file that cannot be read is reported
-    /// when it is loaded.)
+    /// Counts the images of `[textures]` and the background against the scene's texel
+    /// budget from their headers, before any is decoded, refusing the one that passes it
+    /// with its field. (A file that cannot be read is reported when it is loaded.)
     fn check_texel_budget(
         &self,
         textures: &BTreeMap<String, Spanned<TextureDef>>,
         render: Option<&Spanned<RenderDef>>,
+        budget: &mut Images,
     ) -> Result<(), SceneError> {
-        let mut seen = std::collections::HashSet::new();
-        let mut total = 0u64;
         // Every image the scene names: (where, the field, the path).
         let mut images: Vec<(String, Range<usize>, &str, &str)> = textures
             .iter()
@@ -1202,26 +1226,9 @@ impl Validator<'_> {
             images.push(("render".into(), r.span(), "background", rel.as_str()));
         }
         for (label, span, field, rel) in images {
-            let full = self.locate(rel);
-            if !seen.insert(full.clone()) {
-                continue;
-            }
-            let Ok((w, h)) = self.assets.probe(rel) else {
-                continue;
-            };
-            total += w as u64 * h as u64;
-            if total > limits::MAX_SCENE_TEXELS {
+            if let Err(BudgetError::Exceeded(message)) = budget.count(self, rel) {
                 let at = Item { span, name: &label };
-                return Err(self.field_error(
-                    &at,
-                    field,
-                    format!(
-                        "image {} brings the scene's textures to {total} texels, more than \
-                         the {} all of them may have together",
-                        quoted(&full.display().to_string()),
-                        limits::MAX_SCENE_TEXELS
-                    ),
-                ));
+                return Err(self.field_error(&at, field, message));
             }
         }
         Ok(())
@@ -1261,7 +1268,7 @@ impl Validator<'_> {
                 "give only one of `look_at`, `direction`, or `yaw`/`pitch`",
             ));
         }
-        let up = self.point(&at, "up", c.up.unwrap_or([0.0, 1.0, 0.0]))?;
+        let up = self.point(&at, "up", c.up.unwrap_or(Fixed([0.0, 1.0, 0.0])))?;
         let up = crate::numerics::try_normalize(up)
             .ok_or_else(|| self.field_error(&at, "up", "`up` has zero length"))?;
         let direction = if let Some(target) = c.look_at {
@@ -1408,7 +1415,7 @@ impl Validator<'_> {
             },
             encoding: self.encoding(&at, r)?,
         };
-        let ambient = self.radiance(&at, "ambient", r.ambient.unwrap_or([0.2; 3]))?;
+        let ambient = self.radiance(&at, "ambient", r.ambient.unwrap_or(Fixed([0.2; 3])))?;
         Ok((render, ambient))
     }
 
@@ -1554,7 +1561,7 @@ impl Validator<'_> {
         };
         let offset = match t.uv_offset {
             None => [0.0, 0.0],
-            Some([u, v]) => [
+            Some(Fixed([u, v])) => [
                 self.in_range(at, "uv_offset", u, -most, most)?,
                 self.in_range(at, "uv_offset", v, -most, most)?,
             ],
@@ -1585,8 +1592,9 @@ impl Validator<'_> {
                     &at,
                     "type",
                     format!(
-                        "unknown texture type {} (expected image, checker or stripes)",
-                        quoted(other)
+                        "unknown texture type {} (expected image, checker or stripes){}",
+                        quoted(other),
+                        did_you_mean(other, ["image", "checker", "stripes"])
                     ),
                 ));
             }
@@ -1613,7 +1621,7 @@ impl Validator<'_> {
             ));
         }
         let colors = |default: [V3; 2]| -> Result<[Vec3; 2], SceneError> {
-            let [a, b] = t.colors.unwrap_or(default);
+            let [a, b] = t.colors.map_or(default, |c| c.0);
             Ok([
                 self.reflectance(&at, "colors", a)?,
                 self.reflectance(&at, "colors", b)?,
@@ -1658,19 +1666,23 @@ impl Validator<'_> {
                     return Err(self.field_error(&at, "axes", "`axes` names no axis"));
                 }
                 Ok(Texture::Checker {
-                    colors: colors([[1.0; 3], [0.0; 3]])?,
+                    colors: colors([Fixed([1.0; 3]), Fixed([0.0; 3])])?,
                     size,
                     axes,
                 })
             }
             _ => {
                 let width = self.length(&at, "width", require("width", t.width)?)?;
-                let d = self.point(&at, "direction", t.direction.unwrap_or([1.0, 0.0, 0.0]))?;
+                let d = self.point(
+                    &at,
+                    "direction",
+                    t.direction.unwrap_or(Fixed([1.0, 0.0, 0.0])),
+                )?;
                 let direction = crate::numerics::try_normalize(d).ok_or_else(|| {
                     self.field_error(&at, "direction", "`direction` has zero length")
                 })?;
                 Ok(Texture::Stripes {
-                    colors: colors([[1.0; 3], [0.0; 3]])?,
+                    colors: colors([Fixed([1.0; 3]), Fixed([0.0; 3])])?,
                     width,
                     direction,
                 })
@@ -1700,7 +1712,12 @@ impl Validator<'_> {
                 ));
             }
             (Some(t), None) => textures.get(t).cloned().ok_or_else(|| {
-                self.field_error(&at, "texture", format!("no texture named {}", quoted(t)))
+                let hint = did_you_mean(t, textures.keys().map(String::as_str));
+                self.field_error(
+                    &at,
+                    "texture",
+                    format!("no texture named {}{hint}", quoted(t)),
+                )
             })?,
             (None, Some(c)) => Texture::Solid(self.reflectance(&at, "color", c)?),
             (None, None) => d.texture.clone(),
@@ -1819,7 +1836,7 @@ impl Validator<'_> {
             name: "fog",
         };
         let f = f.get_ref();
-        let color = self.radiance(&at, "color", f.color.unwrap_or([0.5; 3]))?;
+        let color = self.radiance(&at, "color", f.color.unwrap_or(Fixed([0.5; 3])))?;
         let max = limits::MAX_COORDINATE as f32;
         let kind = match (f.density, f.start, f.end) {
             (Some(density), None, None) => FogKind::Exponential {
@@ -1858,17 +1875,57 @@ impl Validator<'_> {
     }
 }
 
-/// The image textures of one scene, each file decoded once.
+/// The image textures of one scene, each file decoded once, and the one budget all the
+/// scene's images share.
 #[derive(Default)]
 struct Images {
     loaded: HashMap<PathBuf, Arc<ImageTexture>>,
+    /// The images counted against the budget, each file once.
+    counted: std::collections::HashSet<PathBuf>,
+    /// Their texels together.
+    texels: u64,
+}
+
+/// Why an image cannot be counted.
+enum BudgetError {
+    /// Its header cannot be read (said again, better, when it is loaded).
+    Unreadable,
+    /// It takes the scene past `MAX_SCENE_TEXELS`: the message says so.
+    Exceeded(String),
 }
 
 impl Images {
+    /// Counts image `rel` against the scene's texel budget from its header, once per file,
+    /// whatever names it: a texture, the background or an MTL `map_Kd`.
+    fn count(&mut self, v: &Validator, rel: &str) -> Result<(), BudgetError> {
+        let path = v.locate(rel);
+        if self.counted.contains(&path) {
+            return Ok(());
+        }
+        let (w, h) = v.assets.probe(rel).map_err(|_| BudgetError::Unreadable)?;
+        self.counted.insert(path.clone());
+        self.texels += w as u64 * h as u64;
+        if self.texels > limits::MAX_SCENE_TEXELS {
+            return Err(BudgetError::Exceeded(format!(
+                "image {} ({w}×{h}) brings the scene's images to {} texels, more than the {} \
+                 all of them may have together (textures, background and the meshes' \
+                 material images count alike)",
+                quoted(&path.display().to_string()),
+                self.texels,
+                limits::MAX_SCENE_TEXELS
+            )));
+        }
+        Ok(())
+    }
+
+    /// Image `rel`, decoded once however many name it, after counting it.
     fn load(&mut self, v: &Validator, rel: &str) -> Result<Arc<ImageTexture>, String> {
         let (path, assets) = (v.locate(rel), &v.assets);
         if let Some(img) = self.loaded.get(&path) {
             return Ok(img.clone());
+        }
+        if let Err(BudgetError::Exceeded(message)) = self.count(v, rel) {
+            return Err(message);
         }
         let img = assets.load(rel).map_err(|e| {
             format!(

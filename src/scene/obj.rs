@@ -65,6 +65,7 @@ const PARALLEL_PIECE_BYTES: usize = 1 << 20;
 /// would.
 pub fn parse_obj(text: &str, max_triangles: usize, smooth: bool) -> Result<ObjFile, LineError> {
     use rayon::prelude::*;
+    let text = without_byte_order_mark(text);
     let pieces: Vec<Piece> = cut_at_lines(text).into_par_iter().map(read_piece).collect();
     let mut positions: Vec<Vec3> =
         Vec::with_capacity(pieces.iter().map(|p| p.positions.len()).sum());
@@ -131,7 +132,9 @@ pub fn parse_obj(text: &str, max_triangles: usize, smooth: bool) -> Result<ObjFi
                     );
                 }
                 Statement::MtlLib { line, name } => {
-                    libraries.push((name.to_string(), lines_before + line));
+                    for library in library_names(name) {
+                        libraries.push((library.to_string(), lines_before + line));
+                    }
                 }
             }
         }
@@ -324,6 +327,29 @@ fn read_statement<'a>(
         _ => {} // o, g, s, l, p, curves and surfaces: not for a ray tracer of meshes
     }
     Ok(())
+}
+
+/// `text` without the UTF-8 byte-order mark some editors put first, which would otherwise
+/// hide the first line's keyword (and shift every index after it).
+fn without_byte_order_mark(text: &str) -> &str {
+    text.strip_prefix('\u{feff}').unwrap_or(text)
+}
+
+/// The libraries one `mtllib` line names: OBJ allows several, separated by spaces, but
+/// exporters also write one name with spaces in it; the words are taken as several names
+/// only when each of them is an `.mtl` file name.
+fn library_names(rest: &str) -> Vec<&str> {
+    let words: Vec<&str> = rest.split_ascii_whitespace().collect();
+    let is_mtl = |w: &&str| {
+        w.len() > 4
+            && w.is_char_boundary(w.len() - 4)
+            && w[w.len() - 4..].eq_ignore_ascii_case(".mtl")
+    };
+    if words.len() > 1 && words.iter().all(is_mtl) {
+        words
+    } else {
+        vec![rest]
+    }
 }
 
 /// The statements of OBJ or MTL text: each non-blank line's number (from 1), its text
@@ -557,6 +583,7 @@ pub struct MtlMaterial {
 
 /// Reads MTL text.
 pub fn parse_mtl(text: &str) -> Result<Vec<MtlMaterial>, LineError> {
+    let text = without_byte_order_mark(text);
     let mut out: Vec<MtlMaterial> = Vec::new();
     for (line, content, keyword, words) in statements(text) {
         let fail = |message: String| LineError { line, message };
@@ -610,8 +637,21 @@ pub fn parse_mtl(text: &str) -> Result<Vec<MtlMaterial>, LineError> {
             "Ks" => m.ks = Some(color(words)?),
             "Ke" => m.ke = Some(color(words)?),
             "Ns" => m.ns = Some(one(words)?),
-            "d" => m.transparency = Some(1.0 - one(words)?),
-            "Tr" => m.transparency = Some(one(words)?),
+            "d" | "Tr" => {
+                // Checked as written: `d -5` is out of range as -5, not as a transparency of 6.
+                let v = one(words)?;
+                if !(0.0..=1.0).contains(&v) {
+                    let what = if known == "d" {
+                        "dissolve (opacity)"
+                    } else {
+                        "transparency"
+                    };
+                    return Err(fail(format!(
+                        "`{keyword}` ({what}) must be 0 to 1, got {v}"
+                    )));
+                }
+                m.transparency = Some(if known == "d" { 1.0 - v } else { v });
+            }
             "Ni" => m.ni = Some(one(words)?),
             "illum" => {
                 let v = one(words)?;
@@ -772,6 +812,47 @@ mod tests {
         let big = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3 4\nf 1 2 3\n";
         let e = parse_obj(big, 2, true).unwrap_err();
         assert_eq!(e.line, 6);
+    }
+
+    #[test]
+    fn a_byte_order_mark_hides_nothing() {
+        let obj = "\u{feff}v 0 0 0\nv 1 0 0\nv 0 1 0\nv 5 5 5\nf 1 2 3\n";
+        let file = parse_obj(obj, 10, false).unwrap();
+        let plain = parse_obj(&obj[3..], 10, false).unwrap();
+        assert_eq!(format!("{:?}", file.parts), format!("{:?}", plain.parts));
+        // Without the mark's removal, `f 1 2 3` would name vertices (1,0,0), (0,1,0), (5,5,5).
+        let mtl = parse_mtl("\u{feff}newmtl a\nKd 1 0 0\n").unwrap();
+        assert_eq!(mtl[0].name, "a");
+    }
+
+    #[test]
+    fn mtllib_names_several_libraries_or_one_with_spaces() {
+        assert_eq!(library_names("a.mtl b.MTL"), vec!["a.mtl", "b.MTL"]);
+        assert_eq!(library_names("my file.mtl"), vec!["my file.mtl"]);
+        assert_eq!(library_names("one.mtl"), vec!["one.mtl"]);
+        let file = parse_obj(
+            "mtllib a.mtl b.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+            10,
+            false,
+        )
+        .unwrap();
+        assert_eq!(
+            file.libraries,
+            vec![("a.mtl".to_string(), 1), ("b.mtl".to_string(), 1)]
+        );
+    }
+
+    #[test]
+    fn dissolve_is_checked_as_written() {
+        let e = parse_mtl("newmtl a\nd -5\n").unwrap_err();
+        assert_eq!(e.line, 2);
+        assert!(e.message.contains("got -5"), "{}", e.message);
+        let e = parse_mtl("newmtl a\nTr 1.5\n").unwrap_err();
+        assert!(e.message.contains("got 1.5"), "{}", e.message);
+        assert_eq!(
+            parse_mtl("newmtl a\nd 0.25\n").unwrap()[0].transparency,
+            Some(0.75)
+        );
     }
 
     #[test]

@@ -45,6 +45,58 @@ impl<'i> FieldSpans<'i> {
     }
 }
 
+/// The entry of the file that the byte `offset` lies in, as messages name it: an element
+/// of an array of tables with its index and name (`spheres[2] "glass ball"`), or a table
+/// (`[camera]`, `[materials.glass]`). None before every entry, or when the text does not
+/// parse. An entry is the one whose header starts last at or before `offset` (the parser
+/// spans a table from its header).
+pub fn entry_at(source: &str, offset: usize) -> Option<String> {
+    use crate::messages::{quoted, shown};
+    let root = DeTable::parse(source).ok()?;
+    let mut best: Option<(usize, String)> = None;
+    let mut consider = |start: usize, label: &dyn Fn() -> String| {
+        if start <= offset && best.as_ref().is_none_or(|(b, _)| start >= *b) {
+            best = Some((start, label()));
+        }
+    };
+    for (key, value) in root.get_ref().iter() {
+        let key = shown(key.get_ref());
+        match value.get_ref() {
+            DeValue::Array(items) => {
+                for (i, item) in items.iter().enumerate() {
+                    let DeValue::Table(table) = item.get_ref() else {
+                        continue;
+                    };
+                    let name = table.iter().find_map(|(k, v)| match v.get_ref() {
+                        DeValue::String(n) if k.get_ref() == "name" => Some(n.to_string()),
+                        _ => None,
+                    });
+                    consider(item.span().start, &|| match &name {
+                        Some(n) => format!("{key}[{i}] {}", quoted(n)),
+                        None => format!("{key}[{i}]"),
+                    });
+                }
+            }
+            DeValue::Table(table) => {
+                consider(value.span().start, &|| format!("[{key}]"));
+                // A table of named tables ([materials.glass]) names the inner one.
+                // Spans are headers': `[materials.glass]` spans the inner table from its
+                // `[`, and the implicit outer one from `materials`, one byte later; an inner
+                // table is taken from no earlier than its outer one, so it wins the tie.
+                for (inner, v) in table.iter() {
+                    if matches!(v.get_ref(), DeValue::Table(_)) {
+                        let inner = shown(inner.get_ref());
+                        let start = v.span().start.max(value.span().start);
+                        consider(start, &|| format!("[{key}.{inner}]"));
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    best.map(|(_, label)| label)
+}
+
 /// `key[i][j]` as the key and its indices; None for text of any other shape.
 fn split_field(field: &str) -> Option<(&str, Vec<usize>)> {
     let (key, mut rest) = field.split_once('[').map_or((field, ""), |(k, r)| (k, r));
@@ -74,6 +126,20 @@ fn find_in<'a, 'i>(value: &'a Spanned<DeValue<'i>>, start: usize) -> Option<&'a 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_entry_around_an_offset_is_named() {
+        let source = "[camera]\nfov = 40\n\n[[spheres]]\nradius = 1\n\n[[spheres]]\nname = \"glass ball\"\nradius = \"x\"\n\n[materials.red]\ncolor = 1\n[materials.blue]\ncolor = 2\n";
+        let at = |needle: &str| entry_at(source, source.find(needle).unwrap());
+        assert_eq!(at("fov").as_deref(), Some("[camera]"));
+        assert_eq!(at("radius = 1").as_deref(), Some("spheres[0]"));
+        assert_eq!(
+            at("radius = \"x\"").as_deref(),
+            Some("spheres[1] \"glass ball\"")
+        );
+        assert_eq!(at("color = 1").as_deref(), Some("[materials.red]"));
+        assert_eq!(at("color = 2").as_deref(), Some("[materials.blue]"));
+    }
 
     const TEXT: &str = "[camera]\neye = [0, 0, 0]\nfov = 40\n\n[[spheres]]\ncenter = [0, 0, -5]\n\
                         radius = 1\n\n[[polygons]]\nvertices = [\n  [0, 0, 0],\n  [1, 0, 0],\n  \

@@ -3,6 +3,7 @@
 //! another placement, as a load of the file with those values would validate it (the
 //! viewer's transform edits).
 
+use super::fixed_array::Fixed;
 use super::solids::{BoxDef, ConeDef, DiscDef, PlaneDef, TorusDef};
 use super::{
     CylinderDef, Item, LoadedScene, MeshDef, P3, PolygonDef, SceneFile, SphereDef, TetrahedronDef,
@@ -41,8 +42,8 @@ macro_rules! entry_defs {
                 (self.translate, self.rotate, self.scale.as_ref())
             }
             fn set_placement(&mut self, p: &ObjectPlacement) {
-                self.translate = Some(p.translate.to_array());
-                self.rotate = Some(p.rotate.to_array());
+                self.translate = Some(Fixed(p.translate.to_array()));
+                self.rotate = Some(Fixed(p.rotate.to_array()));
                 self.scale = Some(toml::Value::Array(
                     p.scale.to_array().map(toml::Value::Float).to_vec(),
                 ));

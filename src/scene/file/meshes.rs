@@ -2,7 +2,7 @@
 //! prism's. A file placed by many entries is read and built once (instancing).
 
 use super::placement::Placement;
-use super::{Images, Item, MeshDef, Validator};
+use super::{BudgetError, Images, Item, MeshDef, Validator};
 use crate::appearance::{Material, Texture, UvTransform};
 use crate::geometry::{Mesh, Transform};
 use crate::limits;
@@ -122,7 +122,7 @@ impl Validator<'_> {
         for mesh in meshes {
             for p in mesh.bounds().corners() {
                 let p = p.as_dvec3();
-                let placed = DVec3::from(placement.point(p.to_array())) - self.origin;
+                let placed = DVec3::from(placement.point(p.to_array().into())) - self.origin;
                 if !(placed.is_finite() && placed.abs().max_element() <= limits::MAX_COORDINATE) {
                     return Err(self.field_error(
                         at,
@@ -205,6 +205,17 @@ impl Validator<'_> {
                         ),
                     })?;
                 let materials = parse_mtl(&mtl_text).map_err(|e| asset_error(&mtl_path, at, e))?;
+                // Every image of the library is counted from its header before any is
+                // decoded, so the budget refuses before memory is spent.
+                for m in &materials {
+                    if let Some(name) = &m.map_kd
+                        && let Err(BudgetError::Exceeded(message)) =
+                            images.count(self, &beside(&mtl_rel, name))
+                    {
+                        let line = m.lines.get("map_Kd").copied().unwrap_or(m.line);
+                        return Err(asset_error(&mtl_path, at, LineError { line, message }));
+                    }
+                }
                 for m in materials {
                     let material = self
                         .mtl_material(&m, &mtl_rel, images)

@@ -3,6 +3,7 @@
 //! coordinates and in f64, so that a transform of a far-off scene keeps its precision.
 
 use super::entry::EntryDef;
+use super::fixed_array::Fixed;
 use super::{Item, P3, Validator};
 use crate::geometry::Transform;
 use crate::limits;
@@ -50,7 +51,7 @@ impl Placement {
         if self.is_identity() {
             return p;
         }
-        (self.linear() * DVec3::from(p) + self.translate).to_array()
+        Fixed((self.linear() * DVec3::from(p) + self.translate).to_array())
     }
 
     /// For a shape its own parameters can place (no turn, which would turn its texture,

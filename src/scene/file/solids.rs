@@ -6,6 +6,7 @@
 
 use super::placement::Placement;
 use super::{Item, P3, V3, Validator};
+use crate::limits;
 use crate::messages::number;
 use crate::scene::description::ShapeDesc;
 use crate::scene::error::SceneError;
@@ -102,6 +103,35 @@ impl Validator<'_> {
         Ok((v / length).as_vec3())
     }
 
+    /// Refuses `what`, an extent (a box's side, a cone's or cylinder's height) of `extent`
+    /// at `distance` from the camera, when single precision cannot resolve it there: one
+    /// rule for every shape with such an extent.
+    pub(super) fn resolvable(
+        &self,
+        at: &Item,
+        field: &str,
+        what: &str,
+        extent: f32,
+        distance: f32,
+    ) -> Result<(), SceneError> {
+        let least = distance * limits::MIN_RELATIVE_EXTENT;
+        if extent >= least && extent > 0.0 {
+            return Ok(());
+        }
+        Err(self.field_error(
+            at,
+            field,
+            format!(
+                "{what} is too thin to hold in single precision this far from the camera: \
+                 {} across at a distance of {}; make it at least {} (2^-20 of the distance), \
+                 or place the camera nearer",
+                number(extent.max(0.0)),
+                number(distance),
+                number(least.max(f32::MIN_POSITIVE))
+            ),
+        ))
+    }
+
     /// A length that may also be zero (a cone's point).
     fn length_or_zero(&self, at: &Item, field: &str, v: f32) -> Result<f32, SceneError> {
         if v == 0.0 {
@@ -138,12 +168,11 @@ impl Validator<'_> {
         };
         let min = self.position(at, "min", lo)?;
         let max = self.position(at, "max", hi)?;
-        if !(min.cmplt(max).all()) {
-            return Err(self.field_error(
-                at,
-                "max",
-                "the box is too thin to hold in single precision this far from the camera",
-            ));
+        let distance = min.abs().max(max.abs()).max_element();
+        for axis in 0..3 {
+            let name = ["x", "y", "z"][axis];
+            let what = format!("the box along {name}");
+            self.resolvable(at, "max", &what, max[axis] - min[axis], distance)?;
         }
         let cuboid = ShapeDesc::Cuboid { min, max };
         if axis_aligned {
@@ -216,9 +245,18 @@ impl Validator<'_> {
         let height = self.length(at, "height", (d.height as f64 * along) as f32)?;
         let mut top_point = base;
         top_point[1] += height as f64;
-        self.position(at, "height", top_point)?;
+        let top = self.position(at, "height", top_point)?;
+        let relative_base = self.position(at, "base", base)?;
+        let distance = relative_base.abs().max(top.abs()).max_element();
+        self.resolvable(
+            at,
+            "height",
+            "the cone's height",
+            top.y - relative_base.y,
+            distance,
+        )?;
         let cone = ShapeDesc::Cone {
-            base: self.position(at, "base", base)?,
+            base: relative_base,
             radius,
             top_radius,
             height,

@@ -1,0 +1,214 @@
+//! Values that used to pass silently wrong, and messages that used to mislead (issue 30):
+//! arrays with extra elements, a byte-order mark in an OBJ, the inclusive minimum length,
+//! one thinness rule for every shape with an extent, "did you mean", plain type names with
+//! the entry named, and MTL values checked as written.
+
+use std::path::{Path, PathBuf};
+
+const CAMERA: &str = "[camera]\neye = [0, 0, 0]\ndirection = [0, 0, -1]\nfov = 40\n\n";
+
+fn parse(text: &str) -> Result<prism::scene::Scene, String> {
+    parse_in(text, Path::new("."))
+}
+
+fn parse_in(text: &str, dir: &Path) -> Result<prism::scene::Scene, String> {
+    let source = format!("{CAMERA}{text}");
+    prism::scene::parse_scene(&source, &dir.join("scene.toml"), dir).map_err(|e| e.to_string())
+}
+
+fn refused(text: &str, needles: &[&str]) {
+    let e = parse(text)
+        .err()
+        .unwrap_or_else(|| panic!("accepted: {text}"));
+    for n in needles {
+        assert!(e.contains(n), "expected {n:?} in: {e}");
+    }
+}
+
+#[test]
+fn arrays_with_extra_elements_are_refused_as_short_ones_are() {
+    refused(
+        "[[spheres]]\ncenter = [0, 0, -5, 99, \"x\", true]\nradius = 1\n",
+        &["scene.toml:7", "spheres[0]", "6 values", "exactly 3"],
+    );
+    refused(
+        "[[spheres]]\ncenter = [0, 0, -5]\nradius = 1\nrotate = [1, 2, 3, 4, 5]\n",
+        &["5 values", "exactly 3"],
+    );
+    refused(
+        "[[triangles]]\nvertices = [[0, 0, -5], [1, 0, -5], [0, 1, -5], [1, 1, -5]]\n",
+        &["triangles[0]", "4 values", "exactly 3"],
+    );
+    refused(
+        "[[spheres]]\ncenter = [0, 0]\nradius = 1\n",
+        &["2 values", "exactly 3"],
+    );
+    // An animation key of five angles for a rotation is refused at load, too.
+    refused(
+        "[[spheres]]\nname = \"b\"\ncenter = [0, 0, -5]\nradius = 1\n\n[animation]\nframes = 2\n\
+         [[animation.track]]\ntarget = \"b\"\nfield = \"rotate\"\nkeys = [{ frame = 0, value = \
+         [0, 0, 0, 0, 0] }, { frame = 1, value = [0, 90, 0, 0, 0] }]\n",
+        &["exactly 3"],
+    );
+    parse("[[spheres]]\ncenter = [0, 0, -5]\nradius = 1\n").unwrap();
+}
+
+#[test]
+fn type_errors_use_the_formats_words_and_name_the_entry() {
+    refused(
+        "[[spheres]]\ncenter = [0, 0, -5]\nradius = 1\n\n[[spheres]]\nname = \"glass ball\"\n\
+         center = [0, 0, -5]\nradius = \"big\"\n",
+        &["spheres[1] \"glass ball\"", "expected a number"],
+    );
+    let e = parse("[[spheres]]\ncenter = [0, 0, -5]\nradius = 1\n").map(|_| ());
+    assert!(e.is_ok());
+    refused(
+        "[render]\nmax_depth = 2.5\n[[spheres]]\ncenter = [0, 0, -5]\nradius = 1\n",
+        &["[render]", "a whole number"],
+    );
+}
+
+#[test]
+fn near_names_are_suggested() {
+    refused(
+        "[[spheres]]\ncenter = [0, 0, -5]\nraduis = 1\n",
+        &["unknown field `raduis`", "did you mean \"radius\"?"],
+    );
+    refused(
+        "[materials.glass]\ncolor = [1, 1, 1]\n[[spheres]]\ncenter = [0, 0, -5]\nradius = 1\n\
+         material = \"glas\"\n",
+        &["no material named \"glas\"", "did you mean \"glass\"?"],
+    );
+    refused(
+        "[[lights]]\ntype = \"spto\"\nposition = [0, 1, 0]\n",
+        &["unknown light type", "did you mean \"spot\"?"],
+    );
+    refused(
+        "[textures.wood]\ntype = \"checker\"\nsize = 1\n[materials.m]\ntexture = \"wod\"\n\
+         [[spheres]]\ncenter = [0, 0, -5]\nradius = 1\nmaterial = \"m\"\n",
+        &["no texture named \"wod\"", "did you mean \"wood\"?"],
+    );
+    refused(
+        "[textures.t]\ntype = \"chequer\"\n",
+        &["unknown texture type", "did you mean \"checker\"?"],
+    );
+    // Nothing close: no guess.
+    let e =
+        parse("[[spheres]]\ncenter = [0, 0, -5]\nradius = 1\nmaterial = \"zzzz\"\n").unwrap_err();
+    assert!(!e.contains("did you mean"), "{e}");
+}
+
+#[test]
+fn the_documented_minimum_length_is_accepted() {
+    parse("[[spheres]]\ncenter = [0, 0, -5]\nradius = 1e-12\n").unwrap();
+    parse("[[cones]]\nbase = [0, 0, -5]\nradius = 1e-12\nheight = 1\n").unwrap();
+    parse("[[tori]]\ncenter = [0, 0, -5]\nmajor_radius = 1\nminor_radius = 1e-12\n").unwrap();
+    let source = "[camera]\neye = [0, 0, 0]\ndirection = [0, 0, -1]\nfov = 40\naperture = 0.1\n\
+                  focus_distance = 1e-12\n";
+    prism::scene::parse_scene(source, Path::new("s.toml"), Path::new(".")).unwrap();
+    refused(
+        "[[spheres]]\ncenter = [0, 0, -5]\nradius = 9e-13\n",
+        &["at least 1e-12", "got 9e-13"],
+    );
+}
+
+#[test]
+fn one_thinness_rule_for_boxes_cylinders_and_cones() {
+    for thin in [
+        "[[boxes]]\nmin = [-1, -1, -5]\nmax = [1, -0.9999999, -4]\n",
+        "[[cones]]\nbase = [0, 0, -5]\nradius = 1\nheight = 1e-9\ncaps = false\n",
+        "[[cones]]\nbase = [0, 0, -5]\nradius = 1\nheight = 1e-6\ncaps = false\n",
+        "[[cylinders]]\nbase = [0, 0, -5]\nradius = 1\nheight = 1e-9\ncaps = false\n",
+    ] {
+        refused(
+            thin,
+            &["too thin to hold in single precision", "make it at least"],
+        );
+    }
+    // At 2^-20 of the distance and above, each is accepted.
+    for ok in [
+        "[[boxes]]\nmin = [-1, -1, -5]\nmax = [1, -0.99999, -4]\n",
+        "[[cones]]\nbase = [0, 0, -5]\nradius = 1\nheight = 1e-5\ncaps = false\n",
+        "[[cylinders]]\nbase = [0, 0, -5]\nradius = 1\nheight = 1e-5\n",
+    ] {
+        parse(ok).unwrap_or_else(|e| panic!("{ok}: {e}"));
+    }
+    // The rule is relative: the same thin cone near the camera is fine.
+    parse("[[cones]]\nbase = [0, 0, -0.001]\nradius = 1e-4\nheight = 1e-8\ncaps = false\n")
+        .unwrap();
+}
+
+fn dir_with(files: &[(&str, &str)]) -> (tempfile::TempDir, PathBuf) {
+    let dir = tempfile::tempdir().unwrap();
+    for (name, text) in files {
+        std::fs::write(dir.path().join(name), text).unwrap();
+    }
+    let path = dir.path().to_path_buf();
+    (dir, path)
+}
+
+#[test]
+fn a_byte_order_mark_in_an_obj_or_mtl_hides_nothing() {
+    let obj = "v -1 -1 -5\nv 1 -1 -5\nv 0 1 -5\nv 9 9 9\nmtllib m.mtl\nusemtl red\nf 1 2 3\n";
+    let mtl = "newmtl red\nKd 1 0 0\n";
+    let mesh = "[[meshes]]\npath = \"tri.obj\"\n";
+    let (_a, plain) = dir_with(&[("tri.obj", obj), ("m.mtl", mtl)]);
+    let (_b, marked) = dir_with(&[
+        ("tri.obj", &format!("\u{feff}{obj}")),
+        ("m.mtl", &format!("\u{feff}{mtl}")),
+    ]);
+    let a = parse_in(mesh, &plain).unwrap();
+    let b = parse_in(mesh, &marked).unwrap();
+    assert_eq!(format!("{:?}", a.objects), format!("{:?}", b.objects));
+}
+
+#[test]
+fn mtl_values_are_checked_as_written() {
+    let obj = "mtllib m.mtl\nv -1 -1 -5\nv 1 -1 -5\nv 0 1 -5\nusemtl a\nf 1 2 3\n";
+    let (_d, dir) = dir_with(&[("tri.obj", obj), ("m.mtl", "newmtl a\nd -5\n")]);
+    let e = parse_in("[[meshes]]\npath = \"tri.obj\"\n", &dir).unwrap_err();
+    assert!(e.contains("m.mtl:2") && e.contains("got -5"), "{e}");
+    assert!(!e.contains("got 6"), "{e}");
+}
+
+/// A PNG whose header says `side`² and whose pixels are missing: enough for a header
+/// probe, refused if ever decoded.
+fn header_only_png(path: &Path, side: u32) {
+    let file = std::io::BufWriter::new(std::fs::File::create(path).unwrap());
+    let mut encoder = png::Encoder::new(file, side, side);
+    encoder.set_color(png::ColorType::Rgb);
+    encoder.set_depth(png::BitDepth::Eight);
+    let mut writer = encoder.write_header().unwrap();
+    writer.write_chunk(png::chunk::IDAT, &[]).unwrap();
+}
+
+/// The images of an OBJ's material libraries count towards the scene's texel budget, all
+/// of them from their headers before any is decoded.
+#[test]
+fn mesh_material_images_count_towards_the_texel_budget() {
+    let (_d, dir) = dir_with(&[(
+        "tri.obj",
+        "mtllib m.mtl\nv -1 -1 -5\nv 1 -1 -5\nv 0 1 -5\nusemtl a\nf 1 2 3\nusemtl c\nf 1 2 3\n",
+    )]);
+    let mut mtl = String::new();
+    for name in ["a", "b", "c"] {
+        header_only_png(&dir.join(format!("{name}.png")), 8192);
+        mtl += &format!("newmtl {name}\nmap_Kd {name}.png\n");
+    }
+    std::fs::write(dir.join("m.mtl"), mtl).unwrap();
+    let e = parse_in("[[meshes]]\npath = \"tri.obj\"\n", &dir).unwrap_err();
+    assert!(e.contains("m.mtl:6"), "{e}");
+    assert!(e.contains("c.png") && e.contains("201326592 texels"), "{e}");
+    // The same image named by every material counts once: within the budget, it is then
+    // decoded (and this one, having no pixels, is refused as unreadable).
+    std::fs::write(
+        dir.join("m.mtl"),
+        "newmtl a\nmap_Kd a.png\nnewmtl c\nmap_Kd a.png\n",
+    )
+    .unwrap();
+    let e = parse_in("[[meshes]]\npath = \"tri.obj\"\n", &dir).unwrap_err();
+    assert!(
+        e.contains("cannot load image") && !e.contains("texels"),
+        "{e}"
+    );
+}
