@@ -24,6 +24,20 @@ pub struct Camera {
     pub aperture: f32,
     /// How far in front of the eye, along the view axis, the plane in focus lies.
     pub focus_distance: f32,
+    /// Which way the scene's coordinates turn: prism's own right-handed ones, or POV-Ray's
+    /// left-handed ones, whose numbers then render as POV-Ray shows them.
+    pub handedness: Handedness,
+}
+
+/// The handedness of a scene's coordinates, as the camera shows them.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Handedness {
+    /// x right, y up, z towards the viewer (prism's, OpenGL's, pbrt's).
+    #[default]
+    Right,
+    /// x right, y up, z away from the viewer (POV-Ray's): the image is the mirror image
+    /// of the right-handed one, left for right.
+    Left,
 }
 
 use crate::limits::{MAX_COORDINATE, MAX_PITCH, MIN_LENGTH, PITCH, VFOV};
@@ -54,6 +68,7 @@ impl Camera {
             up,
             aperture: 0.0,
             focus_distance: 1.0,
+            handedness: Handedness::Right,
         })
     }
 
@@ -123,6 +138,11 @@ impl Camera {
         let forward = self.forward();
         let right = self.right();
         let up = right.cross(forward);
+        // Left-handed coordinates seen through right-handed rays: the screen's x mirrored.
+        let right = match self.handedness {
+            Handedness::Right => right,
+            Handedness::Left => -right,
+        };
         let tan_half = (self.vfov.to_radians() * 0.5).tan();
         let aspect = width as f32 / height as f32;
         CameraRays {
@@ -255,6 +275,7 @@ mod tests {
             up: Vec3::Y,
             aperture: 0.0,
             focus_distance: 1.0,
+            handedness: Default::default(),
         };
         let rays = cam.rays(200, 100);
         let centre = rays.ray(100.0, 50.0);
@@ -276,6 +297,7 @@ mod tests {
             up: Vec3::Y,
             aperture: 0.0,
             focus_distance: 1.0,
+            handedness: Default::default(),
         };
         let top = Vec3::from(cam.rays(100, 100).ray(50.0, 0.0).dir);
         assert!((top.y / -top.z - 0.25).abs() < 1e-6);
@@ -294,6 +316,29 @@ mod tests {
         assert!(Camera::looking_along(Vec3::ZERO, Vec3::ZERO, 40.0).is_none());
     }
 
+    /// Left-handed coordinates show the mirror image: the ray through a pixel is the
+    /// right-handed ray through the pixel mirrored across the image's middle.
+    #[test]
+    fn left_handedness_mirrors_the_image() {
+        let right =
+            Camera::looking_along(Vec3::new(1.0, 2.0, 3.0), Vec3::new(0.3, -0.2, -1.0), 50.0)
+                .unwrap();
+        let left = Camera {
+            handedness: Handedness::Left,
+            ..right
+        };
+        let (r, l) = (right.rays(200, 100), left.rays(200, 100));
+        for (x, y) in [(0.5, 0.5), (37.25, 80.0), (100.0, 50.0), (199.5, 10.0)] {
+            let a = Vec3::from(l.ray(x, y).dir);
+            let b = Vec3::from(r.ray(200.0 - x, y).dir);
+            assert!((a - b).length() < 1e-6, "{x},{y}: {a} {b}");
+        }
+        assert_eq!(
+            Vec3::from(l.ray(100.0, 50.0).dir),
+            Vec3::from(r.ray(100.0, 50.0).dir)
+        );
+    }
+
     #[test]
     fn positive_yaw_turns_right() {
         let cam = Camera {
@@ -304,6 +349,7 @@ mod tests {
             up: Vec3::Y,
             aperture: 0.0,
             focus_distance: 1.0,
+            handedness: Default::default(),
         };
         assert!((cam.forward() - Vec3::X).length() < 1e-6);
     }
@@ -320,6 +366,7 @@ mod tests {
             up: Vec3::Y,
             aperture: 0.5,
             focus_distance: 7.0,
+            handedness: Default::default(),
         };
         let rays = cam.rays(64, 48);
         assert!(rays.has_lens());

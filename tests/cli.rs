@@ -630,3 +630,32 @@ fn output_paths_behave_as_a_user_expects() {
         "{stderr}"
     );
 }
+
+/// The largest frame is worked out before anything is allocated: under a memory limit it
+/// is refused with the figures and the way out (tiles), leaving nothing, and a tile of it
+/// that fits renders.
+#[test]
+fn a_frame_too_large_for_memory_is_refused_up_front() {
+    let case = Case::new();
+    let out = case.out();
+    let run = |extra: &str| {
+        let command = format!(
+            "ulimit -v 3000000; exec \"$0\" render -q --aa 1 --width 16384 --height 16384 {extra} -o {}",
+            out.display()
+        );
+        Command::new("bash")
+            .args(["-c", &command, env!("CARGO_BIN_EXE_prism")])
+            .output()
+            .unwrap()
+    };
+    let o = run("");
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{stderr}");
+    for needle in ["16384×16384", "GiB", "address-space limit", "--tile I/"] {
+        assert!(stderr.contains(needle), "{needle:?} in {stderr}");
+    }
+    assert_eq!(std::fs::read_dir(case.dir.path()).unwrap().count(), 0);
+    let o = run("--tile 63/64");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(image::open(&out).unwrap().height(), 256);
+}

@@ -10,7 +10,7 @@ use proptest::prelude::*;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, OnceLock};
 
-const SEEDS: [&str; 9] = [
+const SEEDS: [&str; 10] = [
     include_str!("../fuzz/corpus/seed.toml"),
     include_str!("../fuzz/corpus/shapes.toml"),
     include_str!("../fuzz/corpus/sphere.toml"),
@@ -20,6 +20,7 @@ const SEEDS: [&str; 9] = [
     include_str!("../fuzz/corpus/solids.toml"),
     include_str!("../fuzz/corpus/effects.toml"),
     include_str!("../fuzz/corpus/animation.toml"),
+    include_str!("../fuzz/corpus/left-handed.toml"),
 ];
 
 /// Values that have broken renderers: overflow when squared or multiplied, underflow,
@@ -52,7 +53,7 @@ const HOSTILE: [&str; 24] = [
 ];
 
 /// Text the fuzzer's dictionary also offers: table headers and keys out of place.
-const FRAGMENTS: [&str; 19] = [
+const FRAGMENTS: [&str; 25] = [
     "[[spheres]]\ncenter = [0, 0, -5]\nradius = 1\n",
     "[[polygons]]\nvertices = [[0, 0, 0], [1, 0, 0], [1, 1e-7, 0]]\n",
     "[[tetrahedra]]\nvertices = [[0,0,0],[1,0,0],[0,1,0],[0,0,1e-9]]\n",
@@ -72,6 +73,14 @@ const FRAGMENTS: [&str; 19] = [
     "[[lights]]\ntype = \"spot\"\nposition = [0, 0, 1]\ndirection = [0, 0, -1]\nangle = 0.01\nsoftness = 1\n",
     "[fog]\ndensity = 1e12\n",
     "[materials.y]\ntransparency = 1\neta = 10\nfresnel = true\nroughness = 1\nabsorption = [1e12, 0, 1e-30]\n",
+    // Arrays of the wrong length, a byte-order mark, the camera's handedness, extents at
+    // the thinness rule's edge, names that are nearly right.
+    "center = [0, 0, -5, 99, \"x\", true]\nrotate = [1, 2, 3, 4, 5]\n",
+    "[[triangles]]\nvertices = [[0, 0, -5], [1, 0, -5], [0, 1, -5], [1, 1, -5]]\n",
+    "\u{feff}",
+    "handedness = \"left\"\n",
+    "[[cones]]\nbase = [0, 0, -5]\nradius = 1\nheight = 4.77e-6\ncaps = false\n",
+    "[[spheres]]\ncenter = [0, 0, -5]\nraduis = 1\nmaterial = \"glas\"\n",
 ];
 
 #[derive(Clone, Debug)]

@@ -192,6 +192,30 @@ fn every_shape_draws_as_povray_draws_it() {
     );
 }
 
+/// A POV-Ray scene's numbers render as POV-Ray shows them with `handedness = "left"`: POV-Ray
+/// at its own, left-handed camera (`right x`), prism with the same numbers.
+#[test]
+fn left_handed_scenes_render_as_povray_shows_them() {
+    if !povray_available() {
+        return;
+    }
+    let povray = povray_scene().replace("right -x *", "right x *");
+    assert_ne!(povray, povray_scene());
+    let reference = povray_render(&povray, W, H);
+    let prism = prism_scene().replace("fov = 40\n", "fov = 40\nhandedness = \"left\"\n");
+    let ours = prism_render(&prism, W, H, None);
+    let differing = |a: &image::RgbImage| {
+        a.pixels()
+            .zip(reference.pixels())
+            .filter(|(a, b)| (0..3).any(|c| a[c].abs_diff(b[c]) > 1))
+            .count()
+    };
+    assert!(differing(&ours) <= 8, "{} pixels differ", differing(&ours));
+    // The right-handed render is the mirror image, far from POV-Ray's own.
+    let mirrored = prism_render(&prism_scene(), W, H, None);
+    assert!(differing(&mirrored) > 1000, "{}", differing(&mirrored));
+}
+
 /// A white matte floor and a black ball under a 2 × 2 area light, lit by nothing else:
 /// prism (256 light samples at each pixel's centre) against POV-Ray's `area_light` (a 33 × 33
 /// grid of point lights sharing its colour, each lighting by its own direction:

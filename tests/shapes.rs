@@ -323,7 +323,7 @@ fn bad_shapes_are_refused_with_their_line_and_field() {
         ),
         (
             "[[boxes]]\nmin = [0, 0, 0]\nmax = [1, 1]\n",
-            "invalid length 2",
+            "this array has 2 values; it must have exactly 3",
         ),
         (
             "[[discs]]\ncenter = [0, 0, 0]\nnormal = [0, 0, 0]\nradius = 1\n",

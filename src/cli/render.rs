@@ -9,8 +9,9 @@ use anyhow::{Context, Result, bail};
 use indicatif::{ProgressBar, ProgressStyle};
 use prism::color::Transfer;
 use prism::messages::shown_path;
-use prism::render::{AdaptiveSettings, PendingFile, RenderSettings};
+use prism::render::{AdaptiveSettings, PendingFile, RenderMemory, RenderSettings};
 use prism::render::{BitDepth, ImageFormat, OutputOptions, PixelRect, Placement};
+use prism::render::{available_memory, gib};
 use prism::sampler::SampleLayout;
 use prism::scene::{PreparedScene, Scene, SceneFrames};
 use std::path::{Path, PathBuf};
@@ -200,6 +201,37 @@ pub fn run(args: RenderArgs) -> Result<()> {
     Ok(())
 }
 
+/// Refuses a render that would need more memory than this process can take, with the
+/// figures and the way out, before anything is allocated.
+fn check_memory(settings: &RenderSettings, plan: &Plan, format: ImageFormat) -> Result<()> {
+    let (width, height) = (settings.width, settings.height);
+    let margin = prism::render::adaptive_margin(settings);
+    let window = plan.region.grown(margin, width, height);
+    let need = RenderMemory::of(window, plan.region, format, plan.options.depth);
+    let Some((available, source)) = available_memory() else {
+        return Ok(());
+    };
+    if need.total() <= available {
+        return Ok(());
+    }
+    let what = match plan.placement {
+        Some(p) => format!("region {} of a {width}×{height} frame", p.rect),
+        None => format!("a {width}×{height} frame"),
+    };
+    let tiles = need.total().div_ceil(available / 2).clamp(2, 4096);
+    bail!(BadOption(format!(
+        "{what} needs about {} of memory (pixel sums {}, the image {}), but {} is {}: \
+         render it in tiles (--tile I/{tiles} for I from 0 to {}, then prism stitch) or \
+         at a smaller size",
+        gib(need.total()),
+        gib(need.film + need.flags + need.crop),
+        gib(need.image),
+        gib(available),
+        source.name(),
+        tiles - 1
+    )));
+}
+
 /// Refuses, before any frame is rendered, an image, sidecar or statistics file that would
 /// land on a file the scene reads or on another output of this command.
 fn check_outputs(
@@ -340,6 +372,7 @@ fn render_frame(
     }
     let settings = plan.settings;
     let format = ImageFormat::from_path(path)?;
+    check_memory(&settings, plan, format)?;
     // Claim the output file first: an unwritable path fails now, not after the render.
     create_parent_folders(path, args.quiet)?;
     let pending = PendingFile::create(path)?;

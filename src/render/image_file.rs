@@ -256,18 +256,20 @@ fn write_png(
             encoder.set_source_gamma(png::ScaledFloat::from_scaled(45455));
         }
     }
-    let data: Vec<u8> = match image {
+    // An 8-bit image is written from its own bytes, without a copy of the frame.
+    let data: std::borrow::Cow<[u8]> = match image {
         DynamicImage::ImageRgb16(buffer) => {
             encoder.set_depth(png::BitDepth::Sixteen);
-            buffer
-                .as_raw()
-                .iter()
-                .flat_map(|v| v.to_be_bytes())
-                .collect()
+            let bytes = buffer.as_raw().iter().flat_map(|v| v.to_be_bytes());
+            std::borrow::Cow::Owned(bytes.collect())
+        }
+        DynamicImage::ImageRgb8(buffer) => {
+            encoder.set_depth(png::BitDepth::Eight);
+            std::borrow::Cow::Borrowed(buffer.as_raw())
         }
         other => {
             encoder.set_depth(png::BitDepth::Eight);
-            other.to_rgb8().into_raw()
+            std::borrow::Cow::Owned(other.to_rgb8().into_raw())
         }
     };
     if let Some(p) = placement {

@@ -7,6 +7,7 @@ mod compare;
 mod heat_map;
 mod image_file;
 mod image_read;
+mod memory;
 mod output;
 mod pass;
 mod progressive;
@@ -23,6 +24,7 @@ pub use image_file::{
 pub use image_read::{
     ImageInfo, PixelType, ReadError, ReadImage, read_image, read_image_info, read_pixels,
 };
+pub use memory::{MemorySource, RenderMemory, available_memory, gib};
 pub use output::{OutputError, PendingFile, remove_pending_files, write_bytes, write_png};
 pub use pass::{BAND_ROWS, PassStats, render_pass};
 pub use progressive::{PassOutcome, ProgressiveRender};

@@ -23,6 +23,9 @@ pub fn camera_table(camera: &Camera, origin: DVec3) -> String {
         let _ = writeln!(t, "aperture = {:?}", camera.aperture);
         let _ = writeln!(t, "focus_distance = {:?}", camera.focus_distance);
     }
+    if camera.handedness == crate::camera::Handedness::Left {
+        let _ = writeln!(t, "handedness = \"left\"");
+    }
     t
 }
 
@@ -45,6 +48,7 @@ mod tests {
                 up: Vec3::Y,
                 aperture: 0.0,
                 focus_distance: 1.0,
+                handedness: Default::default(),
             },
             Camera {
                 eye: Vec3::new(-4.0, 0.5, 1e-3),
@@ -54,6 +58,7 @@ mod tests {
                 up: Vec3::new(0.0, 0.6, 0.8),
                 aperture: 0.35,
                 focus_distance: 12.5,
+                handedness: Default::default(),
             },
         ];
         for camera in cameras {

@@ -82,6 +82,7 @@ struct CameraDef {
     fov: f32,
     aperture: Option<f32>,
     focus_distance: Option<f32>,
+    handedness: Option<String>,
 }
 
 #[derive(Deserialize)]
@@ -1300,6 +1301,7 @@ impl Validator<'_> {
                 up,
                 aperture: 0.0,
                 focus_distance: 1.0,
+                handedness: crate::camera::Handedness::Right,
             };
             return self.lens(&at, c, camera, None);
         };
@@ -1343,6 +1345,22 @@ impl Validator<'_> {
         mut camera: Camera,
         target: Option<f32>,
     ) -> Result<Camera, SceneError> {
+        camera.handedness = match c.handedness.as_deref() {
+            None | Some("right") => crate::camera::Handedness::Right,
+            Some("left") => crate::camera::Handedness::Left,
+            Some(other) => {
+                return Err(self.field_error(
+                    at,
+                    "handedness",
+                    format!(
+                        "`handedness` is \"right\" (prism's coordinates) or \"left\" \
+                         (POV-Ray's), got {}{}",
+                        quoted(other),
+                        did_you_mean(other, ["right", "left"])
+                    ),
+                ));
+            }
+        };
         let max = limits::MAX_COORDINATE as f32;
         camera.aperture = self.in_range(at, "aperture", c.aperture.unwrap_or(0.0), 0.0, max)?;
         camera.focus_distance = match (c.focus_distance, target) {

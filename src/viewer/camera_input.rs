@@ -157,6 +157,7 @@ mod tests {
             up: Vec3::Y,
             aperture: 0.0,
             focus_distance: 1.0,
+            handedness: Default::default(),
         }
     }
 
