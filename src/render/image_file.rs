@@ -229,7 +229,8 @@ impl PendingFile {
     }
 }
 
-fn image_message(e: image::ImageError) -> String {
+/// An image crate error in plain words (an I/O cause said once).
+pub(super) fn image_message(e: image::ImageError) -> String {
     match e {
         image::ImageError::IoError(e) => io_message(&e),
         other => other.to_string(),

@@ -2,7 +2,7 @@
 //! says (its size, pixel type and placement), which costs no pixel memory, then its pixels.
 //! Only regular files are opened: a FIFO would block, a device might never end.
 
-use super::image_file::{ImageFormat, PLACEMENT_KEY, Placement, sidecar_path};
+use super::image_file::{ImageFormat, PLACEMENT_KEY, Placement, image_message, sidecar_path};
 use super::output::OutputError;
 use super::region::PixelRect;
 use crate::messages::{io_message, shown_path};
@@ -288,13 +288,6 @@ fn reader(
         _ => image::ImageFormat::OpenExr,
     });
     reader
-}
-
-fn image_message(e: image::ImageError) -> String {
-    match e {
-        image::ImageError::IoError(e) => io_message(&e),
-        other => other.to_string(),
-    }
 }
 
 /// The placement text a sidecar records, if the image has a sidecar: one line
