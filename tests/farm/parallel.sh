@@ -38,12 +38,18 @@ seq 0 $((tiles - 1)) | parallel --will-cite --halt now,fail=1 \
 "$prism" stitch tile_*.png -o stitched.png
 "$prism" render "${size[@]}" --quiet -o full.png
 same stitched.png full.png
-# A rerun with --skip-existing renders only the missing tile.
+# A rerun with --skip-existing renders only the missing tile. Without --quiet each job
+# says what it did: one "rendered" line and a "skipped" line for every other tile.
 rm tile_3.png
 seq 0 $((tiles - 1)) | parallel --will-cite --halt now,fail=1 \
-    "$prism" render "${size[@]}" --quiet --skip-existing --tile {}/$tiles -o "tile_{}.png" \
+    "$prism" render "${size[@]}" --skip-existing --tile {}/$tiles -o "tile_{}.png" \
     2> rerun.log
-[ "$(grep -c '^rendered' rerun.log)" = 1 ] || { echo "FAIL: the rerun rendered more than the missing tile" >&2; cat rerun.log >&2; exit 1; }
+if [ "$(grep -c '^rendered' rerun.log)" != 1 ] ||
+    [ "$(grep -c '^skipped' rerun.log)" != $((tiles - 1)) ]; then
+    echo "FAIL: the rerun did not render just the missing tile" >&2
+    cat rerun.log >&2
+    exit 1
+fi
 "$prism" stitch tile_*.png -o stitched_again.png
 same stitched_again.png full.png
 
