@@ -215,6 +215,49 @@ fn nested_media_bend_by_the_ratio_of_their_indices() {
     assert!(fraction_differing(&reference, &lower, 1) > 0.05);
 }
 
+/// Surfaces that touch, as a user writes them: a clear disc of glass (eta 1.5) standing on
+/// a checked table, and one standing on a block of water (1.33) over the table. Seen from
+/// above, each image is the one with a hair of air between the faces (1e-4: parallel faces
+/// then bend nothing more, and shift the checks by less than a pixel). Taking the table's or
+/// the water's face for the glass's own, as rounding did at random, gave salt-and-pepper
+/// speckle; keeping the ray in the glass after it entered the water bent it by 1.33/1.5, not
+/// 1.33, on leaving the water.
+#[test]
+fn touching_surfaces_render_as_if_a_hair_apart() {
+    let scene = |water: bool, gap: f32| {
+        let (table_top, water) = if water {
+            let water = format!(
+                "[[boxes]]\nmin = [-1, -0.5, -1]\nmax = [1, {gap}, 1]\nmaterial = \"water\"\n"
+            );
+            (-1.0, water)
+        } else {
+            (-gap, String::new())
+        };
+        load(&format!(
+            "[camera]\neye = [0.3, 4, 0.2]\nlook_at = [0, 0, 0]\nfov = 16\n\
+             [render]\nbackground = [1, 1, 1]\nambient = [0.3, 0.3, 0.3]\n\
+             [[lights]]\nposition = [2, 6, 3]\n\
+             [textures.checks]\ntype = \"checker\"\ncolors = [[0.9, 0.9, 0.9], [0.1, 0.2, 0.6]]\n\
+             size = 0.2\naxes = \"xz\"\n\
+             [materials.table]\ntexture = \"checks\"\nspecular = 0\n\
+             [materials.glass]\n{CLEAR}eta = 1.5\n[materials.water]\n{CLEAR}eta = 1.33\n\
+             [[boxes]]\nmin = [-3, -2, -3]\nmax = [3, {table_top}, 3]\nmaterial = \"table\"\n\
+             {water}\
+             [[cylinders]]\nbase = [0, {glass}, 0]\nradius = 1\nheight = 0.5\nmaterial = \"glass\"\n",
+            glass = 2.0 * gap,
+        ))
+    };
+    for water in [false, true] {
+        let touching = image(&scene(water, 0.0), 1);
+        let apart = image(&scene(water, 1e-4), 1);
+        // Only the edges of checks, moved by the gaps, may differ.
+        let differing = fraction_differing(&touching, &apart, 8);
+        assert!(differing < 0.005, "water {water}: {differing}");
+        // The same again: the choice between touching surfaces is not left to rounding.
+        assert_eq!(touching, image(&scene(water, 0.0), 1));
+    }
+}
+
 #[test]
 fn a_conductor_tints_its_reflection_by_schlicks_curve() {
     let scene = load(

@@ -7,6 +7,7 @@ use super::bvh::Bvh;
 use crate::geometry::{
     Aabb, HitDetail, Mesh, Ray, RayQuery, Shape, ShapeHit, SurfacePoint, Transform,
 };
+use glam::Vec3A;
 use std::sync::Arc;
 
 /// What an instance places: built once, shared by every instance of it.
@@ -203,6 +204,19 @@ impl Instance {
         }
     }
 
+    /// Where shadow rays from `hit` start on a smooth mesh, in the scene's space, with its
+    /// error bound ([`Mesh::shadow_point`]); None on anything else.
+    #[inline]
+    pub fn shadow_point(&self, hit: &ShapeHit) -> Option<(Vec3A, Vec3A)> {
+        match (&*self.model, hit.detail) {
+            (Model::Mesh { mesh, .. }, HitDetail::Mesh { triangle, b }) => {
+                let (point, error) = mesh.shadow_point(triangle, b)?;
+                Some(self.transform.point_to_scene(point, error))
+            }
+            _ => None,
+        }
+    }
+
     /// The texture coordinates of `hit`, from the model's own surface (a turned sphere's
     /// map turns with it).
     #[inline]
@@ -215,7 +229,7 @@ impl Instance {
 mod tests {
     use super::*;
     use crate::geometry::Sphere;
-    use glam::{Vec2, Vec3, Vec3A};
+    use glam::{Vec2, Vec3};
 
     fn unit_cube_mesh() -> Mesh {
         let p: Vec<Vec3> = (0..8)

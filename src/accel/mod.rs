@@ -187,6 +187,16 @@ impl Accelerator {
             .surface(q, &hit.shape)
     }
 
+    /// Where shadow rays from `hit` start, with its error bound, when that is not the
+    /// surface point: on a smooth mesh, the point lifted onto its corners' tangent planes
+    /// (Hanika 2021, "Hacking the shadow terminator").
+    #[inline]
+    pub fn shadow_point(&self, hit: &Hit) -> Option<(Vec3A, Vec3A)> {
+        self.primitives[hit.primitive as usize]
+            .surface
+            .shadow_point(&hit.shape)
+    }
+
     /// The texture coordinates of `surface`, the surface point of `hit` along `q`.
     #[inline]
     pub fn uv(&self, q: &RayQuery, surface: &SurfacePoint, hit: &Hit) -> (f32, f32) {
@@ -275,6 +285,45 @@ impl Accelerator {
             Some(hit.t)
         });
         best
+    }
+
+    /// For a ray travelling inside `medium` (an object), beyond `t_min`: the nearest hit on
+    /// any other object, and the nearest on `medium`'s own surface, by one traversal. Where
+    /// one lies beyond the other by more than `slack` (relative: of the nearer's distance
+    /// plus the origin's distance from 0, in units of the direction), it may be left out;
+    /// within that, both are found, so that the caller can tell surfaces that touch.
+    #[inline]
+    pub fn nearest_hits_in_medium(
+        &self,
+        q: &RayQuery,
+        t_min: f32,
+        medium: u32,
+        slack: f32,
+    ) -> (Option<Hit>, Option<Hit>) {
+        let scale = q.ray.origin.abs().max_element() / q.ray.dir.abs().max_element();
+        let reach = |t: f32| t + (t + scale) * slack;
+        let mut other: Option<Hit> = None;
+        let mut own: Option<Hit> = None;
+        let mut nearest = f32::INFINITY;
+        self.bvh.closest(q, f32::INFINITY, |i, _| {
+            let primitive = &self.primitives[i as usize];
+            let found = if primitive.object == medium {
+                &mut own
+            } else {
+                &mut other
+            };
+            let t_max = found
+                .map_or(f32::INFINITY, |h| h.shape.t)
+                .min(reach(nearest));
+            let hit = primitive.surface.intersect_after(q, t_min, t_max)?;
+            *found = Some(Hit {
+                shape: hit,
+                primitive: i,
+            });
+            nearest = nearest.min(hit.t);
+            Some(reach(nearest))
+        });
+        (other, own)
     }
 
     /// The nearest hit among `candidates`, which hold every primitive the ray can reach,

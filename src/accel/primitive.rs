@@ -3,6 +3,7 @@
 
 use super::instance::Instance;
 use crate::geometry::{Aabb, RayQuery, Shape, ShapeHit, SurfacePoint};
+use glam::Vec3A;
 use std::sync::Arc;
 
 /// One intersectable piece of an object (a polygon becomes a fan of triangles, a
@@ -66,6 +67,16 @@ impl Surface {
         match self {
             Surface::Shape(shape) => shape.surface(q, hit),
             Surface::Instance(instance) => instance.surface(q, hit),
+        }
+    }
+
+    /// Where shadow rays from `hit` start on a smooth mesh, with its error bound; None on
+    /// anything else (a mesh is always an instance).
+    #[inline]
+    pub fn shadow_point(&self, hit: &ShapeHit) -> Option<(Vec3A, Vec3A)> {
+        match self {
+            Surface::Shape(_) => None,
+            Surface::Instance(instance) => instance.shadow_point(hit),
         }
     }
 

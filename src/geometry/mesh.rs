@@ -232,6 +232,21 @@ impl Mesh {
         }
     }
 
+    /// On a smooth mesh, where shadow rays from the point at weights `b` of triangle `i`
+    /// start, with its error bound: the point lifted onto its corners' tangent planes
+    /// ([`lifted_point`]), so that a flat facet standing in for a curved surface shadows as
+    /// the surface would. None on a flat mesh.
+    #[inline]
+    pub fn shadow_point(&self, i: u32, b: [f32; 3]) -> Option<(Vec3A, Vec3A)> {
+        if self.normals.is_empty() {
+            return None;
+        }
+        let p = self.corners(i);
+        let (point, error) = barycentric_point(&p, b);
+        let normals = self.triangles[i as usize].map(|v| self.normals[v as usize]);
+        Some(lifted_point(&p, &normals, b, point, error))
+    }
+
     /// Texture coordinates at barycentric weights `b` of triangle `i`: the corners'
     /// interpolated, or without them the weights of the second and third corners.
     #[inline]
@@ -282,6 +297,33 @@ impl Mesh {
             triangles,
         }
     }
+}
+
+/// The point at weights `b` of a smooth triangle lifted onto the tangent planes of its
+/// corners (Hanika 2021): for each corner, the point projected onto that corner's plane
+/// when it lies below it, blended by the weights. The lift is the height of the curved
+/// surface the normals describe above the flat facet, so shadow rays leaving from it are
+/// not caught by the facet's own neighbours at the terminator. Returned with its error
+/// bound: the hit's, and the rounding of the lift.
+#[inline]
+fn lifted_point(
+    corners: &[Vec3A; 3],
+    normals: &[Vec3A; 3],
+    b: [f32; 3],
+    point: Vec3A,
+    error: Vec3A,
+) -> (Vec3A, Vec3A) {
+    let mut lift = Vec3A::ZERO;
+    for k in 0..3 {
+        let n = normals[k];
+        let below = (point - corners[k]).dot(n).min(0.0);
+        lift -= n * (below * b[k]);
+    }
+    let lifted = point + lift;
+    let rounding =
+        (lifted.abs() + lift.abs() + corners[0].abs().max(corners[1].abs()).max(corners[2].abs()))
+            * (4.0 * f32::EPSILON);
+    (lifted, error + rounding)
 }
 
 #[cfg(test)]

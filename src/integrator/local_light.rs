@@ -4,6 +4,7 @@
 use super::{Integrator, Shading};
 use crate::accel::Toward;
 use crate::appearance::{Falloff, LightKind, reflect};
+use crate::numerics::offset_ray_origin;
 use glam::Vec3A;
 
 impl Integrator<'_> {
@@ -34,6 +35,13 @@ impl Integrator<'_> {
         let mut specular = Vec3A::ZERO;
         let accel = self.accel();
         let filters = self.appearance.shadow_filters();
+        // On a smooth mesh, seen from the side its normals face, shadow rays start from the
+        // point lifted off the facet (the lift is outwards only).
+        let lifted = if at.entering && at.ns != n {
+            accel.shadow_point(at.hit)
+        } else {
+            None
+        };
         for (light_index, light) in self.appearance.lights().iter().enumerate() {
             // The direction to the light (to a point of it, unnormalised), how it fades, and
             // a spotlight's cone.
@@ -59,10 +67,12 @@ impl Integrator<'_> {
                     (sampled - p, Some(sampled), falloff, None)
                 }
             };
-            // A light behind this side of the true surface, or of the shading normal,
-            // sends it nothing: no shadow ray needed.
+            // A light behind the shading normal sends nothing: no shadow ray needed. Nor
+            // does one behind the true surface, except on a smooth mesh, where the facet
+            // stands in for a curved surface that may still face the light: its shadow
+            // ray starts from the lifted point, above the facet, and decides.
             let n_dot = at.ns.dot(to_light);
-            if n_dot <= 0.0 || (at.ns != n && n.dot(to_light) <= 0.0) {
+            if n_dot <= 0.0 || (at.ns != n && lifted.is_none() && n.dot(to_light) <= 0.0) {
                 continue;
             }
             let distance = to_light.length();
@@ -74,7 +84,11 @@ impl Integrator<'_> {
             if spot == 0.0 {
                 continue;
             }
-            let origin = self.leave(&at.surface, n, l);
+            let origin = match lifted {
+                // Offset outwards, off the facet's side the lifted point lies on.
+                Some((point, error)) => offset_ray_origin(point, error, n, n),
+                None => self.leave(&at.surface, n, l),
+            };
             self.counts.shadow += 1;
             let leaving = ((at.entering && object.convex) || object.flat).then_some(at.object);
             let toward = match point {

@@ -3,6 +3,7 @@
 //! It asks the acceleration layer two questions, the nearest hit and the light reaching a
 //! point, and reads materials and lights from the appearance.
 
+mod coincident;
 mod local_light;
 mod path;
 mod reflection;
@@ -117,6 +118,9 @@ struct Shading<'s> {
     /// The shading normal on that side (`n` but on a smooth mesh): it lights and turns
     /// rays, never so far that one starts on the wrong side of the true surface.
     ns: Vec3A,
+    /// The medium the ray leaves at this point as well, where the surface touches that
+    /// medium's (coincident.rs): a ray transmitted here is no longer in it.
+    leaves: Option<u32>,
 }
 
 impl Shading<'_> {
@@ -216,7 +220,12 @@ impl<'a> Integrator<'a> {
     /// travels in (absorption inside an object, fog in the air).
     #[inline(always)]
     fn trace_reaching(&mut self, q: &RayQuery, t_min: f32, reach: Reach, path: Path) -> Vec3A {
-        let hit = self.accel().nearest_hit(q, reach);
+        // Where the medium it travels in touches another object, the ray passes from one
+        // into the other (coincident.rs). (Nothing touches an isolated solid.)
+        let (hit, leaves) = match (reach, self.media.current()) {
+            (Reach::After(t_min), Some(medium)) => self.nearest_in_medium(q, t_min, medium),
+            (reach, _) => (self.accel().nearest_hit(q, reach), None),
+        };
         let t_end = hit.map_or(f32::INFINITY, |h| h.shape.t);
         let emitter = if self.appearance.any_emitter() {
             self.emitter_along(&q.ray, t_min, t_end)
@@ -225,7 +234,7 @@ impl<'a> Integrator<'a> {
         };
         let (color, t_end) = match (emitter, hit) {
             (Some((color, t)), _) => (color, t),
-            (None, Some(hit)) => (self.shade(q, &hit, path), t_end),
+            (None, Some(hit)) => (self.shade(q, &hit, leaves, path), t_end),
             (None, None) => (self.miss(q.ray.dir), t_end),
         };
         self.through_medium(color, q, t_end - t_min)
@@ -279,9 +288,11 @@ impl<'a> Integrator<'a> {
     }
 
     /// The colour that ray `q` brings back from `hit`: the light at the surface, plus
-    /// what the reflected and transmitted rays bring. (The query and the hit are passed by
-    /// reference: moved by value, they were copied through the stack on every call.)
-    fn shade(&mut self, q: &RayQuery, hit: &Hit, path: Path) -> Vec3A {
+    /// what the reflected and transmitted rays bring. `leaves` is the medium the ray also
+    /// leaves there, where the surface touches it (coincident.rs). (The query and the hit
+    /// are passed by reference: moved by value, they were copied through the stack on every
+    /// call.)
+    fn shade(&mut self, q: &RayQuery, hit: &Hit, leaves: Option<u32>, path: Path) -> Vec3A {
         self.signature
             .surface(hit.primitive, hit.shape.detail.part());
         let object = self.accel().object(hit);
@@ -303,6 +314,7 @@ impl<'a> Integrator<'a> {
             ns,
             surface,
             entering,
+            leaves,
         };
         // Emission is added unlit (zero for most materials: adding it costs less than a test).
         let mut color = self.local_light(&at) + Vec3A::from(material.emission);

@@ -50,10 +50,14 @@ impl Integrator<'_> {
         // Through the surface the ray enters the object's medium, or leaves it, for its
         // subtree; the media are put back after.
         let around = self.media;
+        let beyond = match at.leaves {
+            Some(touching) => around.left(touching),
+            None => around,
+        };
         let beyond = if at.entering {
-            around.entered(at.object)
+            beyond.entered(at.object)
         } else {
-            around.left(at.object)
+            beyond.left(at.object)
         };
         let color = if bends(material) {
             let ratio = self.eta_ratio(at);
