@@ -40,6 +40,10 @@ pub const MAX_SCENE_TEXELS: u64 = 1 << 27;
 /// 10²⁵, far inside f32's range, and f64 checks in the validator see no overflow either.
 pub const MAX_COORDINATE: f64 = 1.0e12;
 
+/// How far from its own origin a mesh file's vertex may lie: as far as the smallest scale
+/// can bring within `MAX_COORDINATE`. Cross products of such coordinates stay finite in f32.
+pub const MAX_MESH_COORDINATE: f64 = MAX_COORDINATE / *SCALE.start();
+
 /// The shortest length a radius, height or pattern size may have, in scene units. Its
 /// square is still a normal f32 number.
 pub const MIN_LENGTH: f64 = 1.0e-12;
@@ -179,5 +183,10 @@ pub const MAX_TILES: usize = 1 << 16;
 /// nine hours at 30 frames a second.
 pub const MAX_FRAMES: u32 = 1_000_000;
 
-/// The most keyframes one animation track may have.
+/// The most keyframes an animation may have, over all its tracks (each frame's scene is
+/// the file with every track's value written in: its cost grows with them).
 pub const MAX_KEYS: usize = 100_000;
+
+/// The most elements an array in a scene file may have: the longest list a field takes
+/// (a track's keys). Longer is refused before the parser reads it.
+pub const MAX_ARRAY_ELEMENTS: usize = MAX_KEYS;

@@ -109,10 +109,47 @@ pub fn shown_path(path: &std::path::Path) -> String {
     shown_within(&path.to_string_lossy(), 4096)
 }
 
+/// Where the file system looked for `path` when it differs from what was written: the
+/// path made absolute against the working folder, `.` and `..` taken out. Said for a
+/// file not found, so that a user sees which folder a relative path was taken in.
+pub fn looked_for(path: &std::path::Path) -> Option<String> {
+    use std::path::Component;
+    let absolute = std::path::absolute(path).ok()?;
+    let mut clean = std::path::PathBuf::new();
+    for part in absolute.components() {
+        match part {
+            Component::CurDir => {}
+            Component::ParentDir => {
+                clean.pop();
+            }
+            other => clean.push(other),
+        }
+    }
+    (clean != path).then(|| shown_path(&clean))
+}
+
+/// The cause of a failed read of `path`, and for a file not found where it was looked for.
+pub fn read_failure(path: &std::path::Path, e: &std::io::Error) -> String {
+    let cause = io_message(e);
+    match looked_for(path).filter(|_| e.kind() == std::io::ErrorKind::NotFound) {
+        Some(place) => format!("{cause}; looked for {place}"),
+        None => cause,
+    }
+}
+
 /// A number as a person writes it: plainly in the usual range, in exponent form when huge
 /// or tiny (2e19, not 20000000000000000000).
 pub fn number(v: f32) -> String {
-    let a = v.abs();
+    plain_or_exponent(v, v.abs() as f64)
+}
+
+/// [`number`] for a number read as f64 (a frame, a rate).
+pub fn number64(v: f64) -> String {
+    plain_or_exponent(v, v.abs())
+}
+
+/// `v` (of magnitude `a`) plainly in the usual range, else in exponent form.
+fn plain_or_exponent<T: std::fmt::Display + std::fmt::LowerExp>(v: T, a: f64) -> String {
     if a == 0.0 || (1e-4..1e7).contains(&a) || !a.is_finite() {
         v.to_string()
     } else {

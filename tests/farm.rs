@@ -236,6 +236,18 @@ fn tiles_stitch_into_the_full_render_and_bad_sets_are_refused() {
     );
     let stitched = d.s("stitched.pfm");
     ok(&["stitch", &exr[1], &exr[0], "-o", &stitched]);
+    // Two float formats hold the same pixels: the message tells them apart by format.
+    let pfm_tile = d.s("h1.pfm");
+    ok(&[
+        "render", "--quiet", "--width", "40", "--height", "30", "--tile", "1/2", "-o", &pfm_tile,
+    ]);
+    refused(
+        &["stitch", &exr[0], &pfm_tile, "-o", &d.s("mixed.pfm")],
+        &[
+            "32-bit float RGB pixels in PFM",
+            "32-bit float RGB pixels in OpenEXR",
+        ],
+    );
     let a = image::open(&whole).unwrap().into_rgb32f();
     let b = prism::render::read_image(Path::new(&stitched), 100)
         .unwrap()
@@ -577,6 +589,21 @@ fn animation_frames_render_to_a_template() {
         stderr(&out).contains("the environment has no NO_SUCH_VARIABLE_HERE"),
         "{}",
         stderr(&out)
+    );
+    // A variable that is there but not text is called that, not missing.
+    use std::os::unix::ffi::OsStrExt;
+    let out = Command::new(env!("CARGO_BIN_EXE_prism"))
+        .args(base)
+        .args(["--frame-from-env", "TASK", "-o", &d.s("x.png")])
+        .env("TASK", std::ffi::OsStr::from_bytes(b"\xff\xfe"))
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(stderr(&out).contains("is not text"), "{}", stderr(&out));
+    // A frame past any animation's is called that, not a range of the wrong form.
+    refused(
+        &[&base[..], &["--frames", "0..=4294967295", "-o", &template]].concat(),
+        &["at most 1000000 frames, 0 to 999999"],
     );
 }
 

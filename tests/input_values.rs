@@ -212,3 +212,113 @@ fn mesh_material_images_count_towards_the_texel_budget() {
         "{e}"
     );
 }
+
+/// Scene-file messages that pointed elsewhere: a field missing from the whole file named the
+/// first entry; an unclosed `[` was reported lines later as a missing comma; a frame of
+/// 1e300 was printed in 301 digits; an OBJ coordinate past any scale's reach was "no area";
+/// a missing file did not say where it was looked for; the animation table had no "did you
+/// mean".
+#[test]
+fn scene_messages_point_at_what_is_wrong() {
+    let whole = prism::scene::parse_scene(
+        "[[spheres]]\ncenter = [0, 0, -5]\nradius = 1\n",
+        Path::new("s.toml"),
+        Path::new("."),
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(whole.contains("missing field `camera`"), "{whole}");
+    assert!(!whole.contains("spheres[0]"), "{whole}");
+
+    // The bracket opened on line 6 (after the camera's 5) is never closed.
+    refused(
+        "[[lights]]\nposition = [1, 1, 1\n\n[render]\nwidth = 10\n",
+        &[
+            "scene.toml:7:12",
+            "this `[` is never closed",
+            "stopped at line 9",
+        ],
+    );
+    // A bracket closed later is not blamed for a comma missing inside it.
+    refused(
+        "[[polygons]]\nvertices = [\n  [0, 0, -5],\n  [1, 0, -5]\n  [0, 1, -5],\n]\n",
+        &["scene.toml:10", "comma"],
+    );
+    let e = parse("[[polygons]]\nvertices = [\n  [0, 0, -5],\n  [1, 0, -5]\n  [0, 1, -5],\n]\n")
+        .unwrap_err();
+    assert!(!e.contains("never closed"), "{e}");
+
+    refused(
+        "[[spheres]]\nname = \"b\"\ncenter = [0, 0, -5]\nradius = 1\n[animation]\nframes = 3\n\
+         [[animation.track]]\ntarget = \"b\"\nfield = \"radius\"\n\
+         keys = [{ frame = 0, value = 1 }, { frame = 1e300, value = 2 }]\n",
+        &["got 1e300"],
+    );
+    refused(
+        "[[spheres]]\ncenter = [0, 0, -5]\nradius = 1\n[animation]\nframes = 3\ntracks = []\n",
+        &["[animation]", "did you mean \"track\""],
+    );
+
+    let (_d, dir) = dir_with(&[("far.obj", "v 3e38 0 0\nv 0 3e38 0\nv 0 0 3e38\nf 1 2 3\n")]);
+    let e = parse_in("[[meshes]]\npath = \"far.obj\"\n", &dir).unwrap_err();
+    assert!(
+        e.contains("far.obj:1") && e.contains("3e38") && e.contains("1e18"),
+        "{e}"
+    );
+
+    let e = parse_in("[[meshes]]\npath = \"sub/../none.obj\"\n", &dir).unwrap_err();
+    let resolved = dir.join("none.obj");
+    assert!(
+        e.contains(&format!("looked for {}", resolved.display())),
+        "{e}"
+    );
+}
+
+/// An array longer than any field takes is refused before the parser spends memory on it:
+/// a key of four million numbers, a 12 MB file, under a 300 MB address-space limit.
+#[test]
+fn an_overlong_array_is_refused_before_it_is_parsed() {
+    let numbers = vec!["1"; 4_000_000].join(", ");
+    let text = format!(
+        "{CAMERA}[[spheres]]\nname = \"b\"\ncenter = [0, 0, -5]\nradius = 1\n[animation]\n\
+         frames = 3\n[[animation.track]]\ntarget = \"b\"\nfield = \"center\"\n\
+         keys = [{{ frame = 0, value = [{numbers}] }}, {{ frame = 2, value = [0, 0, 0] }}]\n"
+    );
+    let (_d, dir) = dir_with(&[("long.toml", &text)]);
+    let out = std::process::Command::new("bash")
+        .args([
+            "-c",
+            "ulimit -v 300000; exec \"$0\" render --quiet \"$1\" -o \"$2\"",
+            env!("CARGO_BIN_EXE_prism"),
+            dir.join("long.toml").to_str().unwrap(),
+            dir.join("out.png").to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    let e = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{e}");
+    assert!(
+        e.contains("long.toml:15:") && e.contains("more than 100000 elements"),
+        "{e}"
+    );
+    // Every key counts towards one limit, however the keys are split among tracks.
+    let keys = |n: usize| {
+        (0..n)
+            .map(|k| format!("{{ frame = {k}, value = 1 }}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let tracks: String = (0..3)
+        .map(|_| {
+            format!(
+                "[[animation.track]]\ntarget = \"b\"\nfield = \"radius\"\nkeys = [{}]\n",
+                keys(40_000)
+            )
+        })
+        .collect();
+    let e = parse(&format!(
+        "[[spheres]]\nname = \"b\"\ncenter = [0, 0, -5]\nradius = 1\n[animation]\nframes = 100000\n{tracks}"
+    ))
+    .unwrap_err();
+    assert!(e.contains("at most 100000 keys in all"), "{e}");
+}

@@ -10,7 +10,7 @@ use proptest::prelude::*;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, OnceLock};
 
-const SEEDS: [&str; 10] = [
+const SEEDS: [&str; 12] = [
     include_str!("../fuzz/corpus/seed.toml"),
     include_str!("../fuzz/corpus/shapes.toml"),
     include_str!("../fuzz/corpus/sphere.toml"),
@@ -21,6 +21,8 @@ const SEEDS: [&str; 10] = [
     include_str!("../fuzz/corpus/effects.toml"),
     include_str!("../fuzz/corpus/animation.toml"),
     include_str!("../fuzz/corpus/left-handed.toml"),
+    include_str!("../fuzz/corpus/touching.toml"),
+    include_str!("../fuzz/corpus/smooth-mesh-and-brackets.toml"),
 ];
 
 /// Values that have broken renderers: overflow when squared or multiplied, underflow,
@@ -53,7 +55,7 @@ const HOSTILE: [&str; 24] = [
 ];
 
 /// Text the fuzzer's dictionary also offers: table headers and keys out of place.
-const FRAGMENTS: [&str; 25] = [
+const FRAGMENTS: [&str; 29] = [
     "[[spheres]]\ncenter = [0, 0, -5]\nradius = 1\n",
     "[[polygons]]\nvertices = [[0, 0, 0], [1, 0, 0], [1, 1e-7, 0]]\n",
     "[[tetrahedra]]\nvertices = [[0,0,0],[1,0,0],[0,1,0],[0,0,1e-9]]\n",
@@ -81,6 +83,11 @@ const FRAGMENTS: [&str; 25] = [
     "handedness = \"left\"\n",
     "[[cones]]\nbase = [0, 0, -5]\nradius = 1\nheight = 4.77e-6\ncaps = false\n",
     "[[spheres]]\ncenter = [0, 0, -5]\nraduis = 1\nmaterial = \"glas\"\n",
+    // Brackets left open or closed in strings and comments; surfaces that touch.
+    "position = [1, 1, 1\n",
+    "name = \"[,,]\" # [,,\n",
+    "[[boxes]]\nmin = [-1, -1, -6]\nmax = [1, 0, -4]\n[[boxes]]\nmin = [-1, 0, -6]\nmax = [1, 1, -4]\nmaterial = \"x\"\n",
+    "[animation]\nframes = 2\n[[animation.track]]\ntarget = \"spheres[0]\"\nfield = \"radius\"\nkeys = [{ frame = 0, value = 1 }, { frame = 1e300, value = 2 }]\n",
 ];
 
 #[derive(Clone, Debug)]

@@ -192,7 +192,8 @@ fn io_error(e: std::io::Error) -> TextureError {
 /// That `path` is a regular file (a FIFO would block, a device might never end) of a size
 /// a texture may have.
 fn check_file(path: &Path) -> Result<(), TextureError> {
-    let meta = std::fs::metadata(path).map_err(io_error)?;
+    let meta = std::fs::metadata(path)
+        .map_err(|e| TextureError::Io(crate::messages::read_failure(path, &e)))?;
     if !meta.is_file() {
         return Err(TextureError::NotAFile);
     }

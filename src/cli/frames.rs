@@ -26,11 +26,15 @@ impl FrameChoice {
             return Ok(FrameChoice::One(n));
         }
         if let Some(var) = &args.frame_from_env {
-            let value = std::env::var(var).map_err(|_| {
-                BadOption(format!(
+            let value = std::env::var(var).map_err(|e| match e {
+                std::env::VarError::NotPresent => BadOption(format!(
                     "--frame-from-env {var}: the environment has no {var} (is this a job \
                      array task?)"
-                ))
+                )),
+                std::env::VarError::NotUnicode(value) => BadOption(format!(
+                    "--frame-from-env {var}: {var}={} is not text, so not a frame number",
+                    prism::messages::shown(&value.to_string_lossy())
+                )),
             })?;
             let n = value.trim().parse().map_err(|_| {
                 BadOption(format!(
@@ -62,13 +66,18 @@ impl FrameChoice {
                 (a, b, false)
             }
         };
-        let a: u32 = a.trim().parse().map_err(|_| bad())?;
-        let b: u32 = b.trim().parse().map_err(|_| bad())?;
-        let end = if inclusive {
-            b.checked_add(1).ok_or_else(bad)?
-        } else {
-            b
-        };
+        // Read wide, so that a number past the last frame is called that, not a bad form.
+        let a: u64 = a.trim().parse().map_err(|_| bad())?;
+        let b: u64 = b.trim().parse().map_err(|_| bad())?;
+        let end = if inclusive { b.saturating_add(1) } else { b };
+        let most = prism::limits::MAX_FRAMES;
+        if end > most as u64 {
+            return Err(BadOption(format!(
+                "--frames {text}: an animation has at most {most} frames, 0 to {}",
+                most - 1
+            )));
+        }
+        let (a, end) = (a as u32, end as u32);
         if end <= a {
             return Err(BadOption(format!(
                 "--frames {text}: the range holds no frame (its end must come after its start)"

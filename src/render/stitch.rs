@@ -44,16 +44,16 @@ pub enum StitchError {
         ours: (u32, u32),
     },
     /// Tiles of different pixel types or formats.
-    #[error("{name} holds {theirs} pixels, {first} {ours}: stitch tiles written alike")]
+    #[error("{name} holds {theirs}, {first} {ours}: stitch tiles written alike")]
     PixelMismatch {
         /// The tile that differs.
         name: String,
-        /// Its pixel type.
-        theirs: &'static str,
+        /// Its pixel type and format.
+        theirs: String,
         /// The first tile.
         first: String,
-        /// The first tile's pixel type.
-        ours: &'static str,
+        /// The first tile's pixel type and format.
+        ours: String,
     },
     /// Two tiles that share pixels.
     #[error("{a} ({ra}) and {b} ({rb}) overlap")]
@@ -163,9 +163,9 @@ pub fn plan_stitch(
         if tile.pixels != first.pixels || tile.format != first.format {
             return Err(StitchError::PixelMismatch {
                 name: name.clone(),
-                theirs: tile.pixels.name(),
+                theirs: pixels_in(tile),
                 first: first_name.clone(),
-                ours: first.pixels.name(),
+                ours: pixels_in(first),
             });
         }
         if (tile.width, tile.height) != (p.rect.width(), p.rect.height()) {
@@ -317,6 +317,12 @@ fn first_gap(placed: &[(&str, PixelRect)], width: u32, height: u32) -> (u32, u32
         }
     }
     unreachable!("called only when some pixel is uncovered")
+}
+
+/// A tile's pixels as a message names them: their type and the file's format (two float
+/// formats hold the same pixels).
+fn pixels_in(tile: &ImageInfo) -> String {
+    format!("{} pixels in {}", tile.pixels.name(), tile.format.name())
 }
 
 #[cfg(test)]

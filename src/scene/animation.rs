@@ -127,13 +127,12 @@ impl Animation {
                     let e = toml::from_str::<WithAnimation>(source)
                         .err()
                         .expect("it failed");
-                    let (line, column) = line_column(source, e.span().map_or(0, |s| s.start));
-                    Err(SceneError::Syntax {
-                        path: path.to_path_buf(),
-                        line,
-                        column,
-                        message: crate::messages::shown_within(e.message().trim(), 400),
-                    })
+                    Err(super::file::syntax_error(
+                        source,
+                        path,
+                        e.span(),
+                        e.message(),
+                    ))
                 }
                 _ => Ok(None),
             };
@@ -169,7 +168,10 @@ impl Animation {
             return Err(at(
                 span,
                 "animation".into(),
-                format!("`fps` must be a number above 0, at most 1000, got {fps}"),
+                format!(
+                    "`fps` must be a number above 0, at most 1000, got {}",
+                    crate::messages::number64(fps)
+                ),
             ));
         }
         let mut animation = Animation {
@@ -178,6 +180,17 @@ impl Animation {
             tracks: Vec::new(),
             document,
         };
+        let keys: usize = def.track.iter().map(|t| t.get_ref().keys.len()).sum();
+        if keys > limits::MAX_KEYS {
+            return Err(at(
+                span,
+                "animation".into(),
+                format!(
+                    "at most {} keys in all, over every track; got {keys}",
+                    limits::MAX_KEYS
+                ),
+            ));
+        }
         // One copy to look targets up in (the lookup borrows the document mutably).
         let mut lookup = animation.document.clone();
         for (i, track) in def.track.into_iter().enumerate() {
@@ -290,9 +303,6 @@ impl Track {
         if def.keys.is_empty() {
             return Err(whole("a track needs at least one key".into()));
         }
-        if def.keys.len() > limits::MAX_KEYS {
-            return Err(whole(format!("at most {} keys a track", limits::MAX_KEYS)));
-        }
         let mut keys: Vec<Key> = Vec::with_capacity(def.keys.len());
         let mut scalar = None;
         for (k, key) in def.keys.into_iter().enumerate() {
@@ -303,7 +313,7 @@ impl Track {
                 return fail(format!(
                     "keys[{k}]: `frame` must be a number from 0 to {}, got {}",
                     limits::MAX_FRAMES,
-                    key.frame
+                    crate::messages::number64(key.frame)
                 ));
             }
             if let Some(before) = keys.last()

@@ -1,6 +1,7 @@
 //! The TOML scene format (documented in docs/scene-format.md): parsing, and validation that
 //! names the file, the line and the field of every problem.
 
+mod brackets;
 mod entry;
 mod fixed_array;
 mod meshes;
@@ -344,7 +345,8 @@ fn read_text_file(path: &Path, max: u64, what: &str) -> Result<String, SceneErro
         path: path.to_path_buf(),
         reason,
     };
-    let meta = std::fs::metadata(path).map_err(|e| fail(io_message(&e)))?;
+    let meta =
+        std::fs::metadata(path).map_err(|e| fail(crate::messages::read_failure(path, &e)))?;
     if meta.is_dir() {
         return Err(fail("it is a directory".into()));
     }
@@ -470,6 +472,7 @@ fn parse_recorded(
     ),
     SceneError,
 > {
+    refuse_overlong_arrays(source, path)?;
     // An animated scene is validated at its first frame, as it renders by default.
     match super::animation::Animation::parse(source, path)? {
         None => {
@@ -487,14 +490,71 @@ fn parse_recorded(
     }
 }
 
-/// A type error's message in the format's words, with the entry it is in named
-/// (`spheres[0] "glass ball": …`) when the error lies inside one.
-fn type_error_message(source: &str, span: Option<Range<usize>>, message: &str) -> String {
+/// The parser's error `message` about `source` (the file `path`) at `span`, in the
+/// format's words, with the entry it lies in named (`spheres[0] "glass ball": …`). Where a
+/// bracket opened before that place is never closed, the error is that bracket's, at its
+/// line: the parser stops only where the text no longer fits, often lines later.
+pub(super) fn syntax_error(
+    source: &str,
+    path: &Path,
+    span: Option<Range<usize>>,
+    message: &str,
+) -> SceneError {
+    let offset = span.as_ref().map_or(0, |s| s.start);
     let plain = crate::messages::plain_type_words(message.trim());
+    // The parser may quote the file (an unknown key of any length, say).
     let text = crate::messages::shown_within(&plain, 400);
-    match span.and_then(|s| super::spans::entry_at(source, s.start)) {
-        Some(entry) => format!("{entry}: {text}"),
-        None => text,
+    let unclosed = brackets::scan_brackets(source, usize::MAX)
+        .unclosed
+        .filter(|&at| at < offset && line_column(source, at).0 < line_column(source, offset).0);
+    if let Some(at) = unclosed {
+        let (line, column) = line_column(source, at);
+        let bracket = &source[at..at + 1];
+        return SceneError::Syntax {
+            path: path.to_path_buf(),
+            line,
+            column,
+            message: format!(
+                "this `{bracket}` is never closed (the parser stopped at line {}: {text})",
+                line_column(source, offset).0
+            ),
+        };
+    }
+    // A field missing from the file as a whole has an empty span at its start (an
+    // entry's spans its header): no entry to name.
+    let whole = span.as_ref().is_some_and(|s| s.is_empty());
+    let entry = span
+        .filter(|_| !whole)
+        .and_then(|s| super::spans::entry_at(source, s.start));
+    let (line, column) = line_column(source, offset);
+    SceneError::Syntax {
+        path: path.to_path_buf(),
+        line,
+        column,
+        message: match entry {
+            Some(entry) => format!("{entry}: {text}"),
+            None => text,
+        },
+    }
+}
+
+/// Refuses, before the parser reads it, an array longer than any field of the format takes
+/// (the parser's memory for a number is many times its text).
+fn refuse_overlong_arrays(source: &str, path: &Path) -> Result<(), SceneError> {
+    match brackets::scan_brackets(source, limits::MAX_ARRAY_ELEMENTS).overlong {
+        Some(at) => {
+            let (line, column) = line_column(source, at);
+            Err(SceneError::Syntax {
+                path: path.to_path_buf(),
+                line,
+                column,
+                message: format!(
+                    "an array of more than {} elements: no field takes that many",
+                    limits::MAX_ARRAY_ELEMENTS
+                ),
+            })
+        }
+        None => Ok(()),
     }
 }
 
@@ -506,16 +566,8 @@ pub(super) fn parse_still(
     assets: Assets,
     files: &mut Vec<PathBuf>,
 ) -> Result<(Scene, Vec<ObjectOrigin>), SceneError> {
-    let file: SceneFile = toml::from_str(source).map_err(|e| {
-        let (line, column) = line_column(source, e.span().map_or(0, |s| s.start));
-        SceneError::Syntax {
-            path: path.to_path_buf(),
-            line,
-            column,
-            // The parser may quote the file (an unknown key of any length, say).
-            message: type_error_message(source, e.span(), e.message()),
-        }
-    })?;
+    let file: SceneFile =
+        toml::from_str(source).map_err(|e| syntax_error(source, path, e.span(), e.message()))?;
     let eye = file.camera.get_ref().eye;
     let v = Validator {
         path: path.to_path_buf(),

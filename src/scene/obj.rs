@@ -269,9 +269,18 @@ fn read_statement<'a>(
                 }
             }
             let w = if n.len == 4 { n.values[3] } else { 1.0 };
-            piece
-                .positions
-                .push(Vec3::new(n.values[0], n.values[1], n.values[2]) / w);
+            let position = Vec3::new(n.values[0], n.values[1], n.values[2]) / w;
+            let far = position.abs().max_element();
+            // NaN fails the comparison: refused too.
+            let within = far as f64 <= crate::limits::MAX_MESH_COORDINATE;
+            if !within {
+                return Err(fail(format!(
+                    "`v` lies {} from the mesh's origin along an axis: at most {:e}",
+                    crate::messages::number(far),
+                    crate::limits::MAX_MESH_COORDINATE
+                )));
+            }
+            piece.positions.push(position);
         }
         "vt" => {
             let n = numbers::<3>(words, "vt", line)?;
