@@ -579,6 +579,8 @@ pub struct SceneFrames {
     kind: FramesKind,
     /// The files the first frame read, the scene file first.
     files: Vec<PathBuf>,
+    /// The meshes and images the frames read, each once for all of them.
+    cache: super::ReadCache,
 }
 
 enum FramesKind {
@@ -593,7 +595,8 @@ impl SceneFrames {
     /// The scene file at `path`, animated or not, with its first frame validated (as
     /// `load_scene` does).
     pub fn load(path: &Path) -> Result<Self, SceneError> {
-        let load = super::load_scene_file(path);
+        let cache = super::ReadCache::default();
+        let load = super::file::load_scene_file_cached(path, 0, &cache);
         let loaded = load.result?;
         let kind = match loaded.animation {
             None => FramesKind::Still(loaded.scene),
@@ -605,6 +608,7 @@ impl SceneFrames {
         Ok(Self {
             kind,
             files: load.files,
+            cache,
         })
     }
 
@@ -613,6 +617,7 @@ impl SceneFrames {
         Self {
             kind: FramesKind::Still(scene),
             files: Vec::new(),
+            cache: super::ReadCache::default(),
         }
     }
 
@@ -636,7 +641,7 @@ impl SceneFrames {
             FramesKind::Still(scene) => Ok(scene.clone()),
             FramesKind::Animated { path, animation } => {
                 let base = path.parent().unwrap_or(Path::new("."));
-                animation.scene_at(frame, path, super::Assets::Folder(base))
+                animation.scene_at(frame, path, super::Assets::Cached(base, &self.cache))
             }
         }
     }
@@ -849,6 +854,52 @@ keys = [{ frame = 0, value = [0.8, 0.1, 0.1] }, { frame = 9, value = [0.1, 0.1, 
         let loaded = crate::scene::load_scene_file_at(&still, 5).result.unwrap();
         assert_eq!(loaded.frame, 0);
         assert!(loaded.animation.is_none());
+    }
+
+    /// An animation's frames read its meshes and images once: with the files gone after
+    /// the load, every frame still validates, and equals a fresh load of that frame.
+    #[test]
+    fn frames_read_their_files_once() {
+        let dir = tempfile::tempdir().unwrap();
+        let obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+        std::fs::write(dir.path().join("t.obj"), obj).unwrap();
+        let image = image::RgbImage::from_pixel(4, 2, image::Rgb([200, 100, 50]));
+        image.save(dir.path().join("t.png")).unwrap();
+        let scene = "[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 0]\nfov = 40\n\
+                     [textures.t]\ntype = \"image\"\npath = \"t.png\"\n\
+                     [materials.m]\ntexture = \"t\"\n\
+                     [[meshes]]\nname = \"m\"\npath = \"t.obj\"\nmaterial = \"m\"\n\
+                     [animation]\nframes = 4\n[[animation.track]]\ntarget = \"m\"\n\
+                     field = \"rotate\"\n\
+                     keys = [{ frame = 0, value = [0, 0, 0] }, { frame = 3, value = [0, 90, 0] }]\n";
+        let path = dir.path().join("a.toml");
+        std::fs::write(&path, scene).unwrap();
+        let fresh: Vec<_> = (0..4)
+            .map(|f| {
+                crate::scene::load_scene_file_at(&path, f)
+                    .result
+                    .unwrap()
+                    .scene
+            })
+            .collect();
+        let frames = SceneFrames::load(&path).unwrap();
+        std::fs::remove_file(dir.path().join("t.obj")).unwrap();
+        std::fs::remove_file(dir.path().join("t.png")).unwrap();
+        for (f, scene) in fresh.iter().enumerate() {
+            assert_eq!(&frames.frame(f as u32).unwrap(), scene, "frame {f}");
+        }
+        assert_ne!(fresh[0], fresh[3], "the frames differ");
+    }
+
+    /// A value a track overwrites is still checked as the file has it (the eye here).
+    #[test]
+    fn a_field_a_track_overwrites_is_checked_as_written() {
+        let text = SCENE.replace("eye = [0, 1, 8]    # the eye", "eye = [nan, 1, 8]");
+        assert_ne!(text, SCENE);
+        let e = crate::scene::parse_scene(&text, Path::new("a.toml"), Path::new("."))
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("a.toml:3: ") && e.contains("eye"), "{e}");
     }
 
     fn refusal(edit: (&str, &str)) -> String {

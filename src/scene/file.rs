@@ -6,6 +6,7 @@ mod entry;
 mod fixed_array;
 mod meshes;
 mod placement;
+mod read_cache;
 mod solids;
 
 use super::description::{RenderDefaults, Scene, SceneObject, ShapeDesc};
@@ -21,6 +22,7 @@ use entry::{EntryDef, entry_label};
 use fixed_array::Fixed;
 use glam::Vec3;
 use placement::Placement;
+pub use read_cache::ReadCache;
 use serde::Deserialize;
 use std::collections::{BTreeMap, HashMap};
 use std::ops::Range;
@@ -309,10 +311,16 @@ pub fn load_scene_file(path: &Path) -> SceneLoad {
 /// As [`load_scene_file`], at `frame` of the file's animation (the last frame for one past
 /// it; a still file has only frame 0).
 pub fn load_scene_file_at(path: &Path, frame: u32) -> SceneLoad {
+    load_scene_file_cached(path, frame, &ReadCache::default())
+}
+
+/// As [`load_scene_file_at`], keeping the meshes and images read in `cache` (and taking
+/// those read before from it).
+pub(super) fn load_scene_file_cached(path: &Path, frame: u32, cache: &ReadCache) -> SceneLoad {
     let mut files = vec![path.to_path_buf()];
     let result = read_scene_text(path).and_then(|source| {
         let base = path.parent().unwrap_or(Path::new("."));
-        let assets = Assets::Folder(base);
+        let assets = Assets::Cached(base, cache);
         let (mut scene, origins, animation) = parse_recorded(&source, path, assets, &mut files)?;
         let frame = animation.as_ref().map_or(0, |a| frame.min(a.frames - 1));
         if let Some(animation) = &animation
@@ -390,22 +398,46 @@ fn read_text_file(path: &Path, max: u64, what: &str) -> Result<String, SceneErro
 pub enum Assets<'a> {
     /// Paths are relative to this folder (the scene file's own).
     Folder(&'a Path),
+    /// As `Folder`, each mesh and image kept in the cache once read, and taken from it
+    /// when another validation of the scene (another frame) names it again.
+    Cached(&'a Path, &'a ReadCache),
     /// Built into the program: each path as the scene writes it, and the file's bytes.
     Embedded(&'a [(&'a str, &'a [u8])]),
 }
 
-impl Assets<'_> {
+impl<'a> Assets<'a> {
     /// What `rel` names, for messages and to recognise a file named twice.
     fn locate(&self, rel: &str) -> PathBuf {
         match self {
-            Assets::Folder(dir) => dir.join(rel),
+            Assets::Folder(dir) | Assets::Cached(dir, _) => dir.join(rel),
             Assets::Embedded(_) => PathBuf::from(rel),
+        }
+    }
+
+    /// Whether the files are read from disk (and so watched).
+    fn on_disk(&self) -> bool {
+        matches!(self, Assets::Folder(_) | Assets::Cached(..))
+    }
+
+    /// The cache files are kept in, if any.
+    fn cache(&self) -> Option<&'a ReadCache> {
+        match self {
+            Assets::Cached(_, cache) => Some(cache),
+            _ => None,
+        }
+    }
+
+    /// These assets with files kept in `cache`, where they are read from disk.
+    fn cached_in(self, cache: &'a ReadCache) -> Assets<'a> {
+        match self {
+            Assets::Folder(dir) | Assets::Cached(dir, _) => Assets::Cached(dir, cache),
+            embedded => embedded,
         }
     }
 
     fn embedded(&self, rel: &str) -> Option<Result<&[u8], TextureError>> {
         match self {
-            Assets::Folder(_) => None,
+            Assets::Folder(_) | Assets::Cached(..) => None,
             Assets::Embedded(files) => Some(
                 files
                     .iter()
@@ -480,6 +512,15 @@ fn parse_recorded(
             Ok((scene, origins, None))
         }
         Some(animation) => {
+            // The file as written is a scene too (what it is with the animation taken
+            // out): a value a track overwrites is checked as the file has it. Its files,
+            // read once, serve the first frame.
+            let cache = ReadCache::default();
+            let assets = match assets.cache() {
+                Some(_) => assets,
+                None => assets.cached_in(&cache),
+            };
+            parse_still(source, path, assets, files)?;
             let (scene, origins) = parse_still(&animation.source_at(0), path, assets, files)
                 .map_err(|error| SceneError::Frame {
                     frame: 0,
@@ -956,7 +997,7 @@ impl Validator<'_> {
     /// Where asset `rel` is, noted as read.
     fn locate(&self, rel: &str) -> PathBuf {
         let path = self.assets.locate(rel);
-        if let Assets::Folder(_) = self.assets {
+        if self.assets.on_disk() {
             self.reads.borrow_mut().push(path.clone());
         }
         path
@@ -1997,13 +2038,23 @@ impl Images {
         if let Err(BudgetError::Exceeded(message)) = self.count(v, rel) {
             return Err(message);
         }
-        let img = assets.load(rel).map_err(|e| {
-            format!(
-                "cannot load image {}: {e}",
-                quoted(&path.display().to_string())
-            )
-        })?;
-        let img = Arc::new(img);
+        let cached = assets.cache().and_then(|cache| cache.image(&path));
+        let img = match cached {
+            Some(img) => img,
+            None => {
+                let img = assets.load(rel).map_err(|e| {
+                    format!(
+                        "cannot load image {}: {e}",
+                        quoted(&path.display().to_string())
+                    )
+                })?;
+                let img = Arc::new(img);
+                if let Some(cache) = assets.cache() {
+                    cache.keep_image(path.clone(), img.clone());
+                }
+                img
+            }
+        };
         self.loaded.insert(path.to_path_buf(), img.clone());
         Ok(img)
     }

@@ -23,8 +23,8 @@ pub use description::{ObjectPlacement, RenderDefaults, Scene, SceneObject, Shape
 pub use edit::{EditError, MaterialProblem, check_camera, check_material};
 pub use error::SceneError;
 pub use file::{
-    Assets, LoadedScene, ObjectOrigin, SceneLoad, load_scene, load_scene_file, load_scene_file_at,
-    parse_loaded, parse_scene, parse_scene_with,
+    Assets, LoadedScene, ObjectOrigin, ReadCache, SceneLoad, load_scene, load_scene_file,
+    load_scene_file_at, parse_loaded, parse_scene, parse_scene_with,
 };
 pub use geometry::{Geometry, ObjectGeometry, PlanarUv};
 pub use obj::{LineError, ObjFile, ObjPart, parse_obj};

@@ -2,6 +2,7 @@
 //! prism's. A file placed by many entries is read and built once (instancing).
 
 use super::placement::Placement;
+use super::read_cache::ReadMesh;
 use super::{BudgetError, Images, Item, MeshDef, Validator};
 use crate::appearance::{Material, Texture, UvTransform};
 use crate::geometry::{Mesh, Transform};
@@ -150,6 +151,29 @@ impl Validator<'_> {
         triangles: usize,
     ) -> Result<LoadedFile, SceneError> {
         let path = self.locate(rel);
+        let budget = limits::MAX_SCENE_TRIANGLES.saturating_sub(triangles);
+        let key = (path.clone(), smooth);
+        let cached = self.assets.cache().and_then(|cache| cache.mesh(&key));
+        // Read before: taken as it is, unless it no longer fits (then read again, for
+        // the parser's message).
+        if let Some(read) = cached
+            && read
+                .parts
+                .iter()
+                .map(|p| p.2.triangle_count())
+                .sum::<usize>()
+                <= budget
+        {
+            return Ok(LoadedFile {
+                parts: read
+                    .parts
+                    .into_iter()
+                    .map(|(name, line, mesh)| LoadedPart { name, line, mesh })
+                    .collect(),
+                libraries: read.libraries,
+                materials: None,
+            });
+        }
         let text = self.read_asset_text(rel).map_err(|e| {
             self.field_error(
                 at,
@@ -160,9 +184,8 @@ impl Validator<'_> {
                 ),
             )
         })?;
-        let budget = limits::MAX_SCENE_TRIANGLES.saturating_sub(triangles);
         let obj = parse_obj(&text, budget, smooth).map_err(|e| asset_error(&path, at, e))?;
-        Ok(LoadedFile {
+        let file = LoadedFile {
             parts: obj
                 .parts
                 .into_iter()
@@ -174,7 +197,19 @@ impl Validator<'_> {
                 .collect(),
             libraries: obj.libraries,
             materials: None,
-        })
+        };
+        if let Some(cache) = self.assets.cache() {
+            let read = ReadMesh {
+                parts: file
+                    .parts
+                    .iter()
+                    .map(|p| (p.name.clone(), p.line, p.mesh.clone()))
+                    .collect(),
+                libraries: file.libraries.clone(),
+            };
+            cache.keep_mesh(key, read);
+        }
+        Ok(file)
     }
 
     /// Each part's material, from the libraries of `file` (read from `rel`); a part with no
