@@ -179,6 +179,10 @@ pub const JPEG_QUALITY: RangeInclusive<u8> = 1..=100;
 /// The most tiles `prism stitch` assembles in one go.
 pub const MAX_TILES: usize = 1 << 16;
 
+/// The most corners one face of a mesh file may have: a face becomes a fan of triangles
+/// that all meet at its first corner, and a ray near it tests each of them.
+pub const MAX_FACE_CORNERS: usize = 4096;
+
 /// The most frames an animation may have (and so one render command may render): over
 /// nine hours at 30 frames a second.
 pub const MAX_FRAMES: u32 = 1_000_000;

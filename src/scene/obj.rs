@@ -6,6 +6,7 @@
 //! number.
 
 use crate::geometry::{Mesh, MeshError};
+use crate::limits;
 use glam::{Vec2, Vec3};
 use std::collections::HashMap;
 
@@ -66,7 +67,9 @@ const PARALLEL_PIECE_BYTES: usize = 1 << 20;
 pub fn parse_obj(text: &str, max_triangles: usize, smooth: bool) -> Result<ObjFile, LineError> {
     use rayon::prelude::*;
     let text = without_byte_order_mark(text);
-    let pieces: Vec<Piece> = cut_at_lines(text).into_par_iter().map(read_piece).collect();
+    let chunks = cut_at_lines(text);
+    refuse_oversized_faces(&chunks, max_triangles)?;
+    let pieces: Vec<Piece> = chunks.into_par_iter().map(read_piece).collect();
     let mut positions: Vec<Vec3> =
         Vec::with_capacity(pieces.iter().map(|p| p.positions.len()).sum());
     let mut uvs: Vec<Vec2> = Vec::new();
@@ -182,6 +185,96 @@ fn cut_at_lines(text: &str) -> Vec<&str> {
     }
     pieces.push(rest);
     pieces
+}
+
+/// What the faces of a piece of text make, counted before anything is built.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+struct FaceCount {
+    /// The triangles its faces make (n − 2 for a face of n corners).
+    triangles: usize,
+    /// Its lines.
+    lines: usize,
+    /// The first face with more than `MAX_FACE_CORNERS` corners: its line and corners.
+    widest: Option<(usize, usize)>,
+    /// The line of the face that takes the count past the budget it was given.
+    over_at: Option<usize>,
+}
+
+/// Counts the faces of `text` (lines from 1) without reading their numbers, stopping at a
+/// face too wide or at the one that takes the triangles past `budget`. Bytes, not
+/// statements: it runs over the whole file before the reading does.
+fn count_faces(text: &str, budget: usize) -> FaceCount {
+    let bytes = text.as_bytes();
+    let blank = |b: u8| b == b' ' || b == b'\t' || b == b'\r';
+    let mut count = FaceCount::default();
+    let mut i = 0;
+    while i < bytes.len() {
+        count.lines += 1;
+        while i < bytes.len() && blank(bytes[i]) {
+            i += 1;
+        }
+        if bytes[i..].starts_with(b"f") && bytes.get(i + 1).is_some_and(|&b| blank(b)) {
+            let mut corners = 0;
+            let mut in_word = false;
+            i += 1;
+            while i < bytes.len() && bytes[i] != b'\n' && bytes[i] != b'#' {
+                let word = !blank(bytes[i]);
+                corners += (word && !in_word) as usize;
+                in_word = word;
+                i += 1;
+            }
+            if corners > limits::MAX_FACE_CORNERS {
+                count.widest = Some((count.lines, corners));
+                return count;
+            }
+            count.triangles += corners.saturating_sub(2);
+            if count.triangles > budget {
+                count.over_at = Some(count.lines);
+                return count;
+            }
+        }
+        i = match bytes[i..].iter().position(|&b| b == b'\n') {
+            Some(n) => i + n + 1,
+            None => bytes.len(),
+        };
+    }
+    count
+}
+
+/// Refuses, before any table is built, a file whose faces make more than `max_triangles`
+/// triangles or one with more than `MAX_FACE_CORNERS` corners (its fan of triangles all
+/// meet at one corner, where a ray would test every one).
+fn refuse_oversized_faces(chunks: &[&str], max_triangles: usize) -> Result<(), LineError> {
+    use rayon::prelude::*;
+    let counts: Vec<FaceCount> = chunks
+        .par_iter()
+        .map(|chunk| count_faces(chunk, usize::MAX))
+        .collect();
+    let (mut lines_before, mut triangles) = (0, 0usize);
+    for (chunk, count) in chunks.iter().zip(&counts) {
+        if let Some((line, corners)) = count.widest {
+            return Err(LineError {
+                line: lines_before + line,
+                message: format!(
+                    "a face of {corners} corners: at most {} (a fan of triangles that all \
+                     meet at its first corner)",
+                    limits::MAX_FACE_CORNERS
+                ),
+            });
+        }
+        if triangles + count.triangles > max_triangles {
+            let at = count_faces(chunk, max_triangles - triangles).over_at;
+            return Err(LineError {
+                line: lines_before + at.unwrap_or(1),
+                message: format!(
+                    "the mesh has more than the {max_triangles} triangles a scene may hold"
+                ),
+            });
+        }
+        triangles += count.triangles;
+        lines_before += count.lines;
+    }
+    Ok(())
 }
 
 /// A face corner as written: vertex, texture coordinate and normal indices (1-based, or
@@ -821,6 +914,41 @@ mod tests {
         let big = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3 4\nf 1 2 3\n";
         let e = parse_obj(big, 2, true).unwrap_err();
         assert_eq!(e.line, 6);
+    }
+
+    /// Too many triangles, or a face too wide, are refused from a count of the faces
+    /// before any number is read or table built: before a bad number further on is met,
+    /// and at the line that crosses the limit, even across the pieces read in parallel.
+    #[test]
+    fn oversized_faces_are_refused_before_reading() {
+        let mut text = String::from("v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+        for _ in 0..400_000 {
+            text += "f 1 2 3\n";
+        }
+        text += "v nonsense\n";
+        let e = parse_obj(&text, 350_000, true).unwrap_err();
+        assert_eq!(e.line, 3 + 350_001, "{e:?}");
+        assert!(
+            e.message.contains("more than the 350000 triangles"),
+            "{e:?}"
+        );
+        let e = parse_obj(&text, 1 << 20, true).unwrap_err();
+        assert!(e.message.contains("not a finite number") || e.message.contains("nonsense"));
+
+        let corners: Vec<String> = (0..5000).map(|k| format!("{}", k % 3 + 1)).collect();
+        let wide = format!(
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\n# a comment\nf {}\n",
+            corners.join(" ")
+        );
+        let e = parse_obj(&wide, 1 << 20, true).unwrap_err();
+        assert_eq!(e.line, 5);
+        assert!(e.message.contains("5000 corners: at most 4096"), "{e:?}");
+        // Commented corners do not count; a keyword starting with f is not a face.
+        let ok = format!(
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3 # {}\nfo 1\n",
+            corners.join(" ")
+        );
+        assert_eq!(count_faces(&ok, usize::MAX).triangles, 1);
     }
 
     #[test]
