@@ -57,7 +57,7 @@ edits=$(grep -c "prism-timing: shown edit" "$log" || true)
 # Frames while passes run: from the first change's image to the last one's.
 summary=$(awk '
     /prism-timing: shown edit/ { n++; lat[n] = $4; kind[n] = $5; if (!first) first = NR; last = NR }
-    /prism-timing: frame/ { fn++; line[fn] = NR; gap[fn] = $4 }
+    /prism-timing: frame/ { fn++; line[fn] = NR; gap[fn] = $5 }
     function sort(a, k,   i, j, t) { for (i = 2; i <= k; i++) { t = a[i]; for (j = i - 1; j > 0 && a[j] > t; j--) a[j + 1] = a[j]; a[j + 1] = t } }
     END {
         m = 0; for (i = 1; i <= fn; i++) if (line[i] > first && line[i] <= last) g[++m] = gap[i]
@@ -86,8 +86,11 @@ report=$out/responsiveness.md
     echo "| measure | median | 95th percentile | worst |"
     echo "|---|---|---|---|"
     echo "| an edit to its first image on screen (ms), $n edits, $coarse of them shown first coarse | $lat_med | $lat_p95 | $lat_max |"
-    echo "| frames per second while passes run ($frames frames; the 95th-percentile and worst are the slowest frames) | $fps_med | $fps_p5 | $fps_min |"
+    echo "| frames per second the drawing keeps up with while passes run (1000 / a frame's drawing time; $frames frames; the 95th percentile and worst are the slowest) | $fps_med | $fps_p5 | $fps_min |"
     echo
-    echo "The targets: every edit on screen within 100 ms, and 30 frames per second or more."
+    echo "The targets: every edit on screen within 100 ms, and frames drawn fast enough for 30"
+    echo "a second or more. A frame is drawn only when an input or a pass's image is new (not"
+    echo "every vertical blank): between them nothing on screen changes, and the cores are the"
+    echo "tracer's."
 } >"$report"
 cat "$report"

@@ -361,7 +361,7 @@ impl App {
             output.textures_delta,
         )?;
         if let Some(t) = &mut self.timing {
-            t.frame(self.status.generation, self.status.preview);
+            t.frame(self.status.generation, self.status.preview, now);
         }
         let repaint_now = output
             .viewport_output
@@ -751,7 +751,8 @@ impl App {
             self.holding = true;
             return;
         }
-        let idle = !self.dirty && !self.input.moving() && self.status.converged;
+        // Nothing new since the last frame: a pass's image and input set `dirty`.
+        let idle = !self.dirty && !self.input.moving();
         if idle && self.last_present.elapsed() < IDLE_REPAINT {
             self.refresh_pending = true;
             return;
@@ -991,11 +992,13 @@ impl ApplicationHandler<Wake> for App {
 
     fn about_to_wait(&mut self, event_loop: &ActiveEventLoop) {
         let due = self.gfx.as_ref().and_then(|g| g.render.image_due());
-        // Keep drawing while anything changes (but for a change's image, due soon); sleep
-        // once the image has converged.
+        // Keep drawing while the camera moves (but for a change's image, due soon). A new
+        // pass's image wakes the loop itself (the render thread's Wake), and input redraws
+        // as it comes: between them nothing on screen changes, and a frame drawn then would
+        // only take the cores the tracer runs on.
         if let Some(g) = &self.gfx
             && due.is_none()
-            && (self.input.moving() || !self.status.converged)
+            && self.input.moving()
         {
             self.dirty = true;
             g.window.request_redraw();

@@ -29,14 +29,17 @@ impl Timing {
         self.pending.push((generation, Instant::now(), kind));
     }
 
-    /// A frame was drawn showing an image of generation `shown` (`preview`: a coarse one).
-    pub fn frame(&mut self, shown: u64, preview: bool) {
+    /// A frame begun at `began` was drawn showing an image of generation `shown`
+    /// (`preview`: a coarse one). The line gives when, the time since the frame before,
+    /// and how long this one took to draw.
+    pub fn frame(&mut self, shown: u64, preview: bool, began: Instant) {
         let now = Instant::now();
         let ms = |a: Instant, b: Instant| (b - a).as_secs_f64() * 1e3;
         let interval = self.last_frame.map_or(0.0, |l| ms(l, now));
         eprintln!(
-            "prism-timing: frame {:.1} {interval:.2}",
-            ms(self.start, now)
+            "prism-timing: frame {:.1} {interval:.2} {:.2}",
+            ms(self.start, now),
+            ms(began, now)
         );
         self.last_frame = Some(now);
         let quality = if preview { "coarse" } else { "full" };
