@@ -183,6 +183,10 @@ pub const MAX_TILES: usize = 1 << 16;
 /// that all meet at its first corner, and a ray near it tests each of them.
 pub const MAX_FACE_CORNERS: usize = 4096;
 
+/// The most surfaces (a scene's primitives, or one mesh's triangles) that may share one
+/// centre: no hierarchy can part them, so a ray near them tests each.
+pub const MAX_COINCIDENT: usize = 4096;
+
 /// The most frames an animation may have (and so one render command may render): over
 /// nine hours at 30 frames a second.
 pub const MAX_FRAMES: u32 = 1_000_000;

@@ -804,3 +804,39 @@ fn every_field_error_points_at_the_fields_own_line() {
         assert_eq!(error.line(), Some(marked), "{error}\n{text}");
     }
 }
+
+/// Surfaces at one place cannot be parted by any hierarchy, so a ray near them tests each:
+/// more than `limits::MAX_COINCIDENT` of them (copies of one triangle in a mesh, objects
+/// placed at one spot) are refused at once, with the count and the object, and no file is
+/// left. A few copies, as a careless export makes, still render.
+#[test]
+fn coincident_surfaces_past_the_limit_are_refused_at_once() {
+    let d = Dir::new();
+    let copies = |n: usize| format!("v 0 0 -5\nv 1 0 -5\nv 0 1 -5\n{}", "f 1 2 3\n".repeat(n));
+    d.write("copies.obj", &copies(5000));
+    let camera = "[camera]\neye = [0, 0, 0]\ndirection = [0, 0, -1]\nfov = 40\n\n";
+    let start = std::time::Instant::now();
+    d.refuses(
+        &format!("{camera}[[meshes]]\nname = \"copies\"\npath = \"copies.obj\"\n"),
+        &[],
+        &[
+            "5000 surfaces share one centre",
+            "\"copies\"",
+            "at most 4096",
+        ],
+    );
+    let spheres = "[[spheres]]\ncenter = [0, 0, -5]\nradius = 1\n".repeat(4097);
+    d.refuses(
+        &format!("{camera}{spheres}"),
+        &[],
+        &["4097 surfaces share one centre"],
+    );
+    assert!(start.elapsed() < std::time::Duration::from_secs(20));
+    d.write("few.obj", &copies(50));
+    let scene = d.write(
+        "few.toml",
+        &format!("{camera}[[meshes]]\npath = \"few.obj\"\n"),
+    );
+    let out = d.render(&scene, &[]);
+    assert!(out.status.success(), "{}", stderr(&out));
+}

@@ -7,6 +7,7 @@ use super::bvh_build::{BinaryBvh, MAX_DEPTH};
 use crate::geometry::{Aabb, RayQuery};
 use crate::numerics::gamma;
 use crate::simd::F32x4;
+use glam::Vec3A;
 use std::mem::MaybeUninit;
 
 /// Four children: their boxes per axis side by side (structure of arrays), and what each
@@ -185,6 +186,44 @@ pub struct Bvh {
     pub nodes: Vec<WideNode>,
     /// The box around every primitive.
     pub bounds: Option<Aabb>,
+    /// The most primitives that share one centre, and the first of them (in stored
+    /// order): no split can part them, so a ray that reaches them tests every one.
+    pub coincident: Coincident,
+}
+
+/// The largest group of primitives whose boxes share one centre.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Coincident {
+    /// How many.
+    pub count: u32,
+    /// The first of them, in stored order.
+    pub first: u32,
+}
+
+impl Coincident {
+    /// The largest group in `order`, the order the build stored primitives of `bounds` in.
+    /// Primitives of one centre fall on one side of every split, so they are stored side
+    /// by side: the longest run of one centre is the largest group.
+    fn of(bounds: &[Aabb], order: &[u32]) -> Coincident {
+        let centre = |i: u32| {
+            let b = &bounds[i as usize];
+            (Vec3A::from(b.min) + Vec3A::from(b.max)) * 0.5
+        };
+        let mut best = Coincident::default();
+        let mut start = 0;
+        for k in 1..=order.len() {
+            if k == order.len() || centre(order[k]) != centre(order[start]) {
+                if (k - start) as u32 > best.count {
+                    best = Coincident {
+                        count: (k - start) as u32,
+                        first: start as u32,
+                    };
+                }
+                start = k;
+            }
+        }
+        best
+    }
 }
 
 impl Bvh {
@@ -195,6 +234,7 @@ impl Bvh {
         let mut bvh = Bvh {
             nodes: Vec::with_capacity(binary.nodes.len() / 2 + 1),
             bounds: binary.nodes.first().map(|n| n.bounds),
+            coincident: Coincident::of(bounds, &order),
         };
         if !binary.nodes.is_empty() {
             bvh.collapse(&binary, 0);
@@ -209,6 +249,7 @@ impl Bvh {
         Bvh {
             nodes: vec![root],
             bounds: Some(bounds),
+            coincident: Coincident::default(),
         }
     }
 
@@ -401,6 +442,30 @@ mod tests {
     use super::*;
     use crate::geometry::{Ray, Sphere};
     use glam::Vec3;
+
+    /// The build stores boxes of one centre side by side, so the largest group is found
+    /// among any others, whatever their sizes.
+    #[test]
+    fn the_largest_group_of_one_centre_is_found() {
+        let around = |c: Vec3, r: f32| Aabb {
+            min: c - Vec3::splat(r),
+            max: c + Vec3::splat(r),
+        };
+        let mut bounds: Vec<Aabb> = (0..300)
+            .map(|i| around(Vec3::new(i as f32, (i % 7) as f32, 0.0), 0.4))
+            .collect();
+        for k in 0..40 {
+            bounds.insert(
+                k * 7,
+                around(Vec3::new(3.5, 2.0, 1.0), 0.1 + k as f32 * 0.01),
+            );
+        }
+        bounds.extend((0..12).map(|_| around(Vec3::new(-9.0, 0.0, 0.0), 1.0)));
+        let (bvh, order) = Bvh::build(&bounds);
+        assert_eq!(bvh.coincident.count, 40);
+        let first = order[bvh.coincident.first as usize] as usize;
+        assert_eq!(bounds[first].centroid(), Vec3::new(3.5, 2.0, 1.0));
+    }
 
     fn grid_spheres(n: usize) -> Vec<Sphere> {
         (0..n)

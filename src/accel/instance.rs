@@ -44,6 +44,14 @@ impl Model {
         }
     }
 
+    /// The largest group of its triangles that share one centre (none for a shape).
+    pub fn coincident(&self) -> super::Coincident {
+        match self {
+            Model::Mesh { bvh, .. } => bvh.coincident,
+            Model::Shape(_) => super::Coincident::default(),
+        }
+    }
+
     /// The bytes its acceleration data takes beyond the mesh's vertices: the triangles'
     /// corner lists and the hierarchy's nodes (0 for a shape).
     pub fn index_bytes(&self) -> usize {

@@ -23,7 +23,7 @@ mod isolated;
 mod light_buffer;
 mod primitive;
 
-pub use bvh::Bvh;
+pub use bvh::{Bvh, Coincident};
 pub use first_hit::{Candidate, FirstHitTiles, TileCensus};
 pub use instance::{Instance, Model};
 pub use light_buffer::{LightBuffer, LightBufferCensus};
@@ -38,6 +38,7 @@ use crate::appearance::ShadowFilters;
 use crate::camera::CameraRays;
 use crate::geometry::{Aabb, Ray, RayQuery, ShapeHit, SurfacePoint};
 use glam::{Vec3, Vec3A};
+use std::sync::Arc;
 
 /// Which shortcuts the layer builds. Every one leaves every image unchanged
 /// (tests/optimizations.rs); turning one off is for measuring what it buys.
@@ -120,6 +121,8 @@ pub struct Accelerator {
     bvh: Bvh,
     /// For each object, its primitive when the object is an isolated solid.
     isolated: Vec<Option<u32>>,
+    /// The largest group of the primitives that share one centre.
+    coincident: Coincident,
     /// One per point light, by the light's index (none for a directional light, and none
     /// without the option).
     light_buffers: Vec<Option<LightBuffer>>,
@@ -146,6 +149,7 @@ impl Accelerator {
         } else {
             vec![None; object_count]
         };
+        let coincident = bvh.coincident;
         if !options.bvh
             && let Some(bounds) = bvh.bounds
         {
@@ -163,6 +167,7 @@ impl Accelerator {
             primitives,
             bvh,
             isolated,
+            coincident,
             light_buffers,
             options,
         }
@@ -219,6 +224,30 @@ impl Accelerator {
     /// The box around every primitive; None for an empty scene.
     pub fn bounds(&self) -> Option<Aabb> {
         self.bvh.bounds
+    }
+
+    /// The most surfaces that share one centre, anywhere: the primitives of the scene or
+    /// the triangles of one mesh (no split of a hierarchy can part them, so a ray that
+    /// reaches them tests each), with the object they are in (or the first of them).
+    pub fn largest_coincident(&self) -> (u32, u32) {
+        let top = (
+            self.coincident.count,
+            self.primitives
+                .get(self.coincident.first as usize)
+                .map_or(0, |p| p.object),
+        );
+        let mut seen = std::collections::HashSet::new();
+        self.primitives
+            .iter()
+            .filter_map(|p| match &p.surface {
+                Surface::Instance(instance) => {
+                    let model = instance.model();
+                    seen.insert(Arc::as_ptr(model))
+                        .then(|| (model.coincident().count, p.object))
+                }
+                Surface::Shape(_) => None,
+            })
+            .fold(top, |a, b| if b.0 > a.0 { b } else { a })
     }
 
     /// The BVH's node count.
