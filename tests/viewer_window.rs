@@ -221,6 +221,27 @@ fn a_panic_in_the_render_thread_is_shown_and_reported() {
     assert!(red > 20, "no red error text in the panel ({red} pixels)");
 }
 
+/// tests/window/coincident.sh: a scene of more surfaces at one place than any render can
+/// finish opens with the reason in red in the panel, rather than tracing without end.
+#[test]
+fn a_scene_no_render_can_finish_shows_why() {
+    if !window_tools() {
+        return;
+    }
+    let work = tempfile::tempdir().unwrap();
+    let spheres = "[[spheres]]\ncenter = [0, 0, -5]\nradius = 1\n".repeat(4100);
+    std::fs::write(
+        work.path().join("coincident.toml"),
+        format!("[camera]\neye = [0, 0, 0]\ndirection = [0, 0, -1]\nfov = 40\n{spheres}"),
+    )
+    .unwrap();
+    let Ran { stdout, log } = run_script("coincident.sh", work.path());
+    assert!(stdout.contains("viewer exited with"), "{stdout}\n{log}");
+    assert!(log.contains("4100 surfaces share one centre"), "{log}");
+    let red = red_pixels(&work.path().join("coincident.png"), 240);
+    assert!(red > 20, "no red text in the panel ({red} pixels)");
+}
+
 /// A near red sphere and a far checked floor, through a lens focused far away.
 const LENS_SCENE: &str = "[camera]\neye = [0, 0, 0]\ndirection = [0, 0, -1]\nfov = 40\n\
     aperture = 0.3\nfocus_distance = 20\n\

@@ -123,27 +123,6 @@ pub enum Layout {
     Grid,
 }
 
-/// Refuses a scene with more than `limits::MAX_COINCIDENT` surfaces at one place (copies of
-/// one triangle, objects placed at one spot): no hierarchy can part them, so every ray
-/// that comes near tests each, and the render would take without bound.
-fn refuse_coincident(prepared: &PreparedScene, scene: &Scene) -> Result<(), BadOption> {
-    let (count, object) = prepared.geometry.accel().largest_coincident();
-    if count as usize <= prism::limits::MAX_COINCIDENT {
-        return Ok(());
-    }
-    let name = scene
-        .objects
-        .get(object as usize)
-        .map_or_else(String::new, |o| {
-            format!(" (in {})", prism::messages::quoted(&o.name))
-        });
-    Err(BadOption(format!(
-        "{count} surfaces share one centre{name}: at most {} may, as a ray near them tests \
-         every one (copies of one triangle, or objects placed at one spot?)",
-        prism::limits::MAX_COINCIDENT
-    )))
-}
-
 /// An option that does not fit the output asked for.
 #[derive(Debug, thiserror::Error)]
 #[error("{0}")]
@@ -408,7 +387,9 @@ fn render_frame(
     let build_start = Instant::now();
     let prepared = Arc::new(PreparedScene::new(&scene));
     let build_seconds = build_start.elapsed().as_secs_f64();
-    refuse_coincident(&prepared, &scene)?;
+    prepared
+        .check_coincident(&scene)
+        .map_err(|e| BadOption(e.to_string()))?;
     let bar = if args.quiet {
         ProgressBar::hidden()
     } else {

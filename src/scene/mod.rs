@@ -28,5 +28,5 @@ pub use file::{
 };
 pub use geometry::{Geometry, ObjectGeometry, PlanarUv};
 pub use obj::{LineError, ObjFile, ObjPart, parse_obj};
-pub use prepared::PreparedScene;
+pub use prepared::{CoincidentSurfaces, PreparedScene};
 pub use save::{SaveError, SavedText, saved_text};

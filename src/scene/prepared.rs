@@ -17,7 +17,37 @@ pub struct PreparedScene {
     pub appearance: Appearance,
 }
 
+/// A scene that no render can finish in bounded time: more than
+/// `limits::MAX_COINCIDENT` surfaces at one place (copies of one triangle, objects placed at
+/// one spot). No hierarchy can part them, so every ray that comes near tests each.
+#[derive(Debug, thiserror::Error)]
+#[error(
+    "{count} surfaces share one centre{}: at most {} may, as a ray near them tests every one \
+     (copies of one triangle, or objects placed at one spot?)",
+    object.as_ref().map_or_else(String::new, |o| format!(" (in {})", crate::messages::quoted(o))),
+    crate::limits::MAX_COINCIDENT
+)]
+pub struct CoincidentSurfaces {
+    /// How many share the centre.
+    pub count: u32,
+    /// The name of the object they are in (the first of them).
+    pub object: Option<String>,
+}
+
 impl PreparedScene {
+    /// Refuses the scene when more than `limits::MAX_COINCIDENT` of its surfaces share one
+    /// centre; `scene` is the scene it was prepared from (to name the object).
+    pub fn check_coincident(&self, scene: &Scene) -> Result<(), CoincidentSurfaces> {
+        let (count, object) = self.geometry.accel().largest_coincident();
+        if count as usize <= crate::limits::MAX_COINCIDENT {
+            return Ok(());
+        }
+        Err(CoincidentSurfaces {
+            count,
+            object: scene.objects.get(object as usize).map(|o| o.name.clone()),
+        })
+    }
+
     /// How far along the view axis the nearest surface seen through image point (x, y)
     /// lies (what a click to focus focuses on); None where the ray meets nothing.
     pub fn depth_at(&self, rays: &crate::camera::CameraRays, x: f32, y: f32) -> Option<f32> {

@@ -271,6 +271,14 @@ impl Worker {
             }
             let generation = self.generation.load(Ordering::SeqCst);
             self.pass_generation = generation;
+            // A scene no render can finish is shown as a failure until it changes.
+            if self.job.passes_done() == 0
+                && let Err(e) = self.job.scene().check_coincident(&self.scene)
+            {
+                self.fail(e.to_string());
+                waiting = true;
+                continue;
+            }
             let counter = self.generation.clone();
             let cancelled = move || counter.load(Ordering::SeqCst) != generation;
             // A panic in the tracer is a bug: report it and wait for a change, rather
