@@ -109,12 +109,11 @@ pub fn shown_path(path: &std::path::Path) -> String {
     shown_within(&path.to_string_lossy(), 4096)
 }
 
-/// Where the file system looked for `path` when it differs from what was written: the
-/// path made absolute against the working folder, `.` and `..` taken out. Said for a
-/// file not found, so that a user sees which folder a relative path was taken in.
-pub fn looked_for(path: &std::path::Path) -> Option<String> {
+/// `path` made absolute against the working folder, `.` taken out and `..` applied to
+/// the folders as written (links are not followed).
+pub fn absolute_as_written(path: &std::path::Path) -> std::path::PathBuf {
     use std::path::Component;
-    let absolute = std::path::absolute(path).ok()?;
+    let absolute = std::env::current_dir().unwrap_or_default().join(path);
     let mut clean = std::path::PathBuf::new();
     for part in absolute.components() {
         match part {
@@ -125,6 +124,14 @@ pub fn looked_for(path: &std::path::Path) -> Option<String> {
             other => clean.push(other),
         }
     }
+    clean
+}
+
+/// Where the file system looked for `path` when it differs from what was written
+/// ([`absolute_as_written`]). Said for a file not found, so that a user sees which folder
+/// a relative path was taken in.
+pub fn looked_for(path: &std::path::Path) -> Option<String> {
+    let clean = absolute_as_written(path);
     (clean != path).then(|| shown_path(&clean))
 }
 

@@ -236,7 +236,7 @@ fn a_scene_no_render_can_finish_shows_why() {
     )
     .unwrap();
     let Ran { stdout, log } = run_script("coincident.sh", work.path());
-    assert!(stdout.contains("viewer exited with"), "{stdout}\n{log}");
+    assert!(stdout.contains("the viewer quit"), "{stdout}\n{log}");
     assert!(log.contains("4100 surfaces share one centre"), "{log}");
     let red = red_pixels(&work.path().join("coincident.png"), 240);
     assert!(red > 20, "no red text in the panel ({red} pixels)");

@@ -8,7 +8,7 @@ use anyhow::{Result, bail};
 use prism::messages::{io_message, shown_path};
 use prism::render::OutputError;
 use std::collections::HashMap;
-use std::path::{Component, Path, PathBuf};
+use std::path::{Path, PathBuf};
 
 /// What makes two paths one file: for a file that exists, its device and inode (so a link
 /// or a `./` finds it); for one to be made, the path with its folders resolved.
@@ -31,17 +31,7 @@ fn identity(path: &Path) -> Identity {
 /// `path` made absolute, its deepest existing folder resolved through links and the rest
 /// taken as written, without `.` and with `..` applied.
 fn resolved(path: &Path) -> PathBuf {
-    let absolute = std::env::current_dir().unwrap_or_default().join(path);
-    let mut clean = PathBuf::new();
-    for part in absolute.components() {
-        match part {
-            Component::CurDir => {}
-            Component::ParentDir => {
-                clean.pop();
-            }
-            other => clean.push(other),
-        }
-    }
+    let clean = prism::messages::absolute_as_written(path);
     let mut existing = clean.as_path();
     let mut rest = Vec::new();
     while !existing.exists() {

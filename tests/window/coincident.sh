@@ -7,22 +7,9 @@ set -euo pipefail
 # shellcheck source=lib.sh
 . "$(dirname "$0")/lib.sh"
 
-"$prism" view "$work/coincident.toml" --width 320 --height 240 >"$log" 2>&1 &
-pid=$!
-trap 'kill $pid 2>/dev/null || true' EXIT
-
-find_window
-for _ in $(seq 300); do
-    grep -q "share one centre" "$log" && break
-    sleep 0.1
-done
-grep -q "share one centre" "$log" || { echo "no refusal reported:"; cat "$log"; exit 1; }
+start_viewer "$work/coincident.toml" --width 320 --height 240
+wait_for "share one centre" 1 30
 sleep 1
 import -window root "$work/coincident.png"
-xdotool windowfocus --sync "$window"
 quit_with_ctrl_q
-set +e
-wait $pid
-code=$?
-set -e
-echo "viewer exited with $code"
+echo "the viewer quit"
