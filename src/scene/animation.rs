@@ -191,6 +191,9 @@ impl Animation {
                 ),
             ));
         }
+        // The frames' text needs no keys (the tracks hold them now): each frame then
+        // clones, writes and parses the scene, not its animation.
+        without_keys(&mut animation.document);
         // One copy to look targets up in (the lookup borrows the document mutably).
         let mut lookup = animation.document.clone();
         for (i, track) in def.track.into_iter().enumerate() {
@@ -222,6 +225,12 @@ impl Animation {
             animation.tracks.push(parsed);
         }
         Ok(Some(animation))
+    }
+
+    /// The scene file's text as written, but for the tracks' keys (emptied, their lines
+    /// kept): what validating the file as written reads.
+    pub fn written_source(&self) -> String {
+        self.document.to_string()
     }
 
     /// The scene file's text at `frame`: every track's value written into its field. The
@@ -551,6 +560,35 @@ fn canonical(document: &DocumentMut, target: &str) -> String {
 }
 
 /// The entries of an array of tables (`[[spheres]]`) or an array of inline tables.
+/// Empties every track's list of keys written as an array in `document`, keeping the
+/// lines it took (as blank lines), so that every later line keeps its number for messages.
+fn without_keys(document: &mut DocumentMut) {
+    let Some(animation) = document
+        .get_mut("animation")
+        .and_then(|a| a.as_table_like_mut())
+    else {
+        return;
+    };
+    let Some(tracks) = animation.get_mut("track") else {
+        return;
+    };
+    let count = entries(Some(tracks)).len();
+    for i in 0..count {
+        let Some(track) = entry_mut(Some(tracks), i) else {
+            continue;
+        };
+        if let Some(keys) = track.get_mut("keys")
+            && keys.is_array()
+        {
+            let lines = keys.to_string().matches('\n').count();
+            let mut empty = Value::Array(toml_edit::Array::new());
+            empty.decor_mut().set_prefix(" ");
+            empty.decor_mut().set_suffix("\n".repeat(lines));
+            *keys = Item::Value(empty);
+        }
+    }
+}
+
 fn entries(item: Option<&Item>) -> Vec<&dyn TableLike> {
     match item {
         Some(Item::ArrayOfTables(tables)) => tables.iter().map(|t| t as &dyn TableLike).collect(),
@@ -889,6 +927,39 @@ keys = [{ frame = 0, value = [0.8, 0.1, 0.1] }, { frame = 9, value = [0.1, 0.1, 
             assert_eq!(&frames.frame(f as u32).unwrap(), scene, "frame {f}");
         }
         assert_ne!(fresh[0], fresh[3], "the frames differ");
+    }
+
+    /// Lines keep their numbers though the frames' text drops the keys: a bad value after
+    /// an animation whose keys span many lines is reported at its own line.
+    #[test]
+    fn lines_after_the_keys_keep_their_numbers() {
+        let text = format!(
+            "{SCENE}\n[[animation.track]]\ntarget = \"ball\"\nfield = \"radius\"\nkeys = [\n\
+             {{ frame = 0, value = 1 }},\n{{ frame = 5, value = 2 }},\n]\n\n\
+             [[spheres]]\ncenter = [0, 0, 0]\nradius = -1\n"
+        );
+        let line = text.lines().position(|l| l == "radius = -1").unwrap() + 1;
+        let e = crate::scene::parse_scene(&text, Path::new("a.toml"), Path::new("."))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.starts_with(&format!("a.toml:{line}: ")),
+            "line {line}: {e}"
+        );
+        // The text the frames are made from keeps every line where it was.
+        let a = Animation::parse(&text, Path::new("a.toml"))
+            .unwrap()
+            .unwrap();
+        let written = a.written_source();
+        assert_eq!(written.lines().count(), text.lines().count());
+        assert_eq!(
+            written.lines().position(|l| l == "radius = -1"),
+            Some(line - 1)
+        );
+        assert!(
+            !written.contains("value = 2"),
+            "the keys are gone: {written}"
+        );
     }
 
     /// A value a track overwrites is still checked as the file has it (the eye here).

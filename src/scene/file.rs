@@ -520,7 +520,7 @@ fn parse_recorded(
                 Some(_) => assets,
                 None => assets.cached_in(&cache),
             };
-            parse_still(source, path, assets, files)?;
+            parse_still(&animation.written_source(), path, assets, files)?;
             let (scene, origins) = parse_still(&animation.source_at(0), path, assets, files)
                 .map_err(|error| SceneError::Frame {
                     frame: 0,
