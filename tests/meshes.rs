@@ -261,7 +261,7 @@ fn smooth_shading_does_not_leak_light() {
 #[test]
 fn a_smooth_mesh_sphere_shades_like_the_sphere() {
     // An octahedron subdivided three times, its vertices on the unit sphere.
-    let mut v = vec![
+    let corners = [
         Vec3::X,
         Vec3::NEG_X,
         Vec3::Y,
@@ -269,7 +269,7 @@ fn a_smooth_mesh_sphere_shades_like_the_sphere() {
         Vec3::Z,
         Vec3::NEG_Z,
     ];
-    let mut f: Vec<[usize; 3]> = vec![
+    let faces = [
         [0, 2, 4],
         [4, 2, 1],
         [1, 2, 5],
@@ -279,28 +279,7 @@ fn a_smooth_mesh_sphere_shades_like_the_sphere() {
         [5, 3, 1],
         [0, 3, 5],
     ];
-    for _ in 0..3 {
-        let mut mid = std::collections::HashMap::new();
-        let mut next = Vec::new();
-        for [a, b, c] in f {
-            let mut m = |x: usize, y: usize| {
-                *mid.entry((x.min(y), x.max(y))).or_insert_with(|| {
-                    v.push(((v[x] + v[y]) / 2.0).normalize());
-                    v.len() - 1
-                })
-            };
-            let (ab, bc, ca) = (m(a, b), m(b, c), m(c, a));
-            next.extend([[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]);
-        }
-        f = next;
-    }
-    let mut obj = String::new();
-    for p in &v {
-        obj += &format!("v {} {} {}\nvn {} {} {}\n", p.x, p.y, p.z, p.x, p.y, p.z);
-    }
-    for [a, b, c] in &f {
-        obj += &format!("f {0}//{0} {1}//{1} {2}//{2}\n", a + 1, b + 1, c + 1);
-    }
+    let obj = sphere_obj(&corners, &faces, 3);
     let body = "[materials.white]\ncolor = [1, 1, 1]\nspecular = 0\n";
     let camera = "[camera]\neye = [0, 0, 6]\nlook_at = [0, 0, 0]\nfov = 30\n\n\
                   [render]\nambient = [0, 0, 0]\n\n[[lights]]\nposition = [5, 5, 5]\n\n";
@@ -332,7 +311,7 @@ fn a_smooth_mesh_sphere_shades_like_the_sphere() {
 /// as OBJ text.
 fn icosphere_obj() -> String {
     let t = (1.0 + 5f32.sqrt()) / 2.0;
-    let mut v: Vec<Vec3> = [
+    let corners: Vec<Vec3> = [
         [-1.0, t, 0.0],
         [1.0, t, 0.0],
         [-1.0, -t, 0.0],
@@ -371,19 +350,32 @@ fn icosphere_obj() -> String {
         [8, 6, 7],
         [9, 8, 1],
     ];
-    let mut mid = std::collections::HashMap::new();
-    let mut f = Vec::new();
-    for [a, b, c] in faces {
-        let mut m = |x: usize, y: usize| {
-            *mid.entry((x.min(y), x.max(y))).or_insert_with(|| {
-                v.push(((v[x] + v[y]) / 2.0).normalize());
-                v.len() - 1
-            })
-        };
-        let (ab, bc, ca) = (m(a, b), m(b, c), m(c, a));
-        f.extend([[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]);
+    let obj = sphere_obj(&corners, &faces, 1);
+    assert_eq!(obj.matches("\nf ").count(), 80);
+    obj
+}
+
+/// The polyhedron of unit-length `corners` and `faces` with each face split in four
+/// `levels` times, the new corners pushed onto the unit sphere, with the sphere's normals,
+/// as OBJ text.
+fn sphere_obj(corners: &[Vec3], faces: &[[usize; 3]], levels: usize) -> String {
+    let mut v = corners.to_vec();
+    let mut f = faces.to_vec();
+    for _ in 0..levels {
+        let mut mid = std::collections::HashMap::new();
+        let mut next = Vec::new();
+        for [a, b, c] in f {
+            let mut m = |x: usize, y: usize| {
+                *mid.entry((x.min(y), x.max(y))).or_insert_with(|| {
+                    v.push(((v[x] + v[y]) / 2.0).normalize());
+                    v.len() - 1
+                })
+            };
+            let (ab, bc, ca) = (m(a, b), m(b, c), m(c, a));
+            next.extend([[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]);
+        }
+        f = next;
     }
-    assert_eq!(f.len(), 80);
     let mut obj = String::new();
     for p in &v {
         obj += &format!("v {} {} {}\nvn {} {} {}\n", p.x, p.y, p.z, p.x, p.y, p.z);

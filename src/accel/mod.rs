@@ -121,8 +121,9 @@ pub struct Accelerator {
     bvh: Bvh,
     /// For each object, its primitive when the object is an isolated solid.
     isolated: Vec<Option<u32>>,
-    /// The largest group of the primitives that share one centre.
-    coincident: Coincident,
+    /// The most surfaces that share one centre (see `largest_coincident`), and their
+    /// object.
+    coincident: (u32, u32),
     /// One per point light, by the light's index (none for a directional light, and none
     /// without the option).
     light_buffers: Vec<Option<LightBuffer>>,
@@ -149,7 +150,7 @@ impl Accelerator {
         } else {
             vec![None; object_count]
         };
-        let coincident = bvh.coincident;
+        let coincident = largest_coincident(&primitives, bvh.coincident);
         if !options.bvh
             && let Some(bounds) = bvh.bounds
         {
@@ -230,24 +231,7 @@ impl Accelerator {
     /// the triangles of one mesh (no split of a hierarchy can part them, so a ray that
     /// reaches them tests each), with the object they are in (or the first of them).
     pub fn largest_coincident(&self) -> (u32, u32) {
-        let top = (
-            self.coincident.count,
-            self.primitives
-                .get(self.coincident.first as usize)
-                .map_or(0, |p| p.object),
-        );
-        let mut seen = std::collections::HashSet::new();
-        self.primitives
-            .iter()
-            .filter_map(|p| match &p.surface {
-                Surface::Instance(instance) => {
-                    let model = instance.model();
-                    seen.insert(Arc::as_ptr(model))
-                        .then(|| (model.coincident().count, p.object))
-                }
-                Surface::Shape(_) => None,
-            })
-            .fold(top, |a, b| if b.0 > a.0 { b } else { a })
+        self.coincident
     }
 
     /// The BVH's node count.
@@ -329,7 +313,7 @@ impl Accelerator {
         medium: u32,
         slack: f32,
     ) -> (Option<Hit>, Option<Hit>) {
-        let scale = q.ray.origin.abs().max_element() / q.ray.dir.abs().max_element();
+        let scale = q.ray.origin_scale();
         let reach = |t: f32| t + (t + scale) * slack;
         let mut other: Option<Hit> = None;
         let mut own: Option<Hit> = None;
@@ -502,6 +486,28 @@ impl Accelerator {
         }
         true
     }
+}
+
+/// The largest group of surfaces that share one centre, and its object: among
+/// `primitives` (stored in the BVH's order, whose largest group is `top`) or among the
+/// triangles of any mesh they place, each model counted once.
+fn largest_coincident(primitives: &[Primitive], top: Coincident) -> (u32, u32) {
+    let top_object = primitives.get(top.first as usize).map_or(0, |p| p.object);
+    let mut seen = std::collections::HashSet::new();
+    primitives
+        .iter()
+        .filter_map(|p| match &p.surface {
+            Surface::Instance(instance) => {
+                let model = instance.model();
+                seen.insert(Arc::as_ptr(model))
+                    .then(|| (model.coincident().count, p.object))
+            }
+            Surface::Shape(_) => None,
+        })
+        .fold(
+            (top.count, top_object),
+            |a, b| if b.0 > a.0 { b } else { a },
+        )
 }
 
 /// What primary rays through each pixel of one view can hit first.

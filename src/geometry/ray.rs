@@ -31,6 +31,13 @@ impl Ray {
     pub fn at(&self, t: f32) -> Vec3A {
         self.origin + self.dir * t
     }
+
+    /// How far the origin lies from 0, in units of the direction (largest coordinates):
+    /// with t, the scale of the rounding of points along the ray.
+    #[inline]
+    pub fn origin_scale(&self) -> f32 {
+        self.origin.abs().max_element() / self.dir.abs().max_element()
+    }
 }
 
 /// A ray together with what the box test and the watertight triangle test precompute once

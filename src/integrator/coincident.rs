@@ -67,7 +67,7 @@ impl Integrator<'_> {
                 .dot(surface.error + surface.point.abs() * f32::EPSILON);
         let dir = q.ray.dir;
         let cosine = (dir.dot(n).abs() / dir.length()).max(MIN_COSINE);
-        let scale = q.ray.origin.abs().max_element() / dir.abs().max_element();
-        (band / (cosine * dir.length())).min((hit.shape.t + scale) * MAX_BAND)
+        // No wider than the traversal looked past the nearest hit.
+        (band / (cosine * dir.length())).min((hit.shape.t + q.ray.origin_scale()) * MAX_BAND)
     }
 }

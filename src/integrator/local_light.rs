@@ -4,7 +4,7 @@
 use super::{Integrator, Shading};
 use crate::accel::Toward;
 use crate::appearance::{Falloff, LightKind, reflect};
-use crate::numerics::offset_ray_origin;
+use crate::geometry::SurfacePoint;
 use glam::Vec3A;
 
 impl Integrator<'_> {
@@ -85,8 +85,17 @@ impl Integrator<'_> {
                 continue;
             }
             let origin = match lifted {
-                // Offset outwards, off the facet's side the lifted point lies on.
-                Some((point, error)) => offset_ray_origin(point, error, n, n),
+                // Off the facet's outer side, where the lifted point lies, whichever side
+                // of the facet the light is on.
+                Some((point, error)) => self.leave(
+                    &SurfacePoint {
+                        point,
+                        error,
+                        ..at.surface
+                    },
+                    n,
+                    n,
+                ),
                 None => self.leave(&at.surface, n, l),
             };
             self.counts.shadow += 1;

@@ -49,15 +49,13 @@ impl Integrator<'_> {
         let ray = at.q.ray;
         // Through the surface the ray enters the object's medium, or leaves it, for its
         // subtree; the media are put back after.
+        // A touching medium the ray left at this point is left behind too.
         let around = self.media;
-        let beyond = match at.leaves {
-            Some(touching) => around.left(touching),
-            None => around,
-        };
+        let here = at.leaves.map_or(around, |touching| around.left(touching));
         let beyond = if at.entering {
-            beyond.entered(at.object)
+            here.entered(at.object)
         } else {
-            beyond.left(at.object)
+            here.left(at.object)
         };
         let color = if bends(material) {
             let ratio = self.eta_ratio(at);
