@@ -1,5 +1,8 @@
-//! Four f32 lanes for the wide BVH's box test: SSE2 on x86-64 (part of the baseline, so no
-//! runtime detection and no `target-cpu` flag), plain arrays elsewhere with the same results.
+//! Four f32 lanes for the wide BVH's box test and the four-triangle test: SSE2 on x86-64
+//! (part of the baseline, so no runtime detection and no `target-cpu` flag), plain arrays
+//! elsewhere with the same results. Every lane operation is one IEEE operation, rounded as
+//! the scalar one is, so a lane computes bit for bit what scalar code with the same
+//! operations in the same order computes.
 //!
 //! `max_or`/`min_or` fix what happens to NaN, which the slab test relies on: a NaN in `self`
 //! yields `other`. SSE2's `maxps`/`minps` do exactly that; glam's `Vec4::max` leaves it to the
@@ -55,6 +58,38 @@ mod lanes {
         pub fn le_mask(self, other: Self) -> u32 {
             unsafe { _mm_movemask_ps(_mm_cmple_ps(self.0, other.0)) as u32 }
         }
+
+        /// Bit i set where lane i of `self` < lane i of `other`.
+        #[inline(always)]
+        pub fn lt_mask(self, other: Self) -> u32 {
+            unsafe { _mm_movemask_ps(_mm_cmplt_ps(self.0, other.0)) as u32 }
+        }
+
+        /// Bit i set where lane i of `self` == lane i of `other`.
+        #[inline(always)]
+        pub fn eq_mask(self, other: Self) -> u32 {
+            unsafe { _mm_movemask_ps(_mm_cmpeq_ps(self.0, other.0)) as u32 }
+        }
+
+        /// Bit i set where lane i is NaN.
+        #[inline(always)]
+        pub fn nan_mask(self) -> u32 {
+            unsafe { _mm_movemask_ps(_mm_cmpunord_ps(self.0, self.0)) as u32 }
+        }
+
+        /// Each lane's magnitude (its sign bit cleared).
+        #[inline(always)]
+        pub fn abs(self) -> Self {
+            Self(unsafe { _mm_andnot_ps(_mm_set1_ps(-0.0), self.0) })
+        }
+    }
+
+    impl std::ops::Add for F32x4 {
+        type Output = Self;
+        #[inline(always)]
+        fn add(self, o: Self) -> Self {
+            Self(unsafe { _mm_add_ps(self.0, o.0) })
+        }
     }
 
     impl std::ops::Sub for F32x4 {
@@ -70,6 +105,14 @@ mod lanes {
         #[inline(always)]
         fn mul(self, o: Self) -> Self {
             Self(unsafe { _mm_mul_ps(self.0, o.0) })
+        }
+    }
+
+    impl std::ops::Div for F32x4 {
+        type Output = Self;
+        #[inline(always)]
+        fn div(self, o: Self) -> Self {
+            Self(unsafe { _mm_div_ps(self.0, o.0) })
         }
     }
 }
@@ -123,8 +166,41 @@ mod portable {
         }
 
         #[inline(always)]
+        fn mask(self, o: Self, f: impl Fn(f32, f32) -> bool) -> u32 {
+            (0..4).fold(0, |m, i| m | ((f(self.0[i], o.0[i]) as u32) << i))
+        }
+
+        #[inline(always)]
         pub fn le_mask(self, other: Self) -> u32 {
-            (0..4).fold(0, |m, i| m | (((self.0[i] <= other.0[i]) as u32) << i))
+            self.mask(other, |a, b| a <= b)
+        }
+
+        #[inline(always)]
+        pub fn lt_mask(self, other: Self) -> u32 {
+            self.mask(other, |a, b| a < b)
+        }
+
+        #[inline(always)]
+        pub fn eq_mask(self, other: Self) -> u32 {
+            self.mask(other, |a, b| a == b)
+        }
+
+        #[inline(always)]
+        pub fn nan_mask(self) -> u32 {
+            self.mask(self, |a, _| a.is_nan())
+        }
+
+        #[inline(always)]
+        pub fn abs(self) -> Self {
+            Self(self.0.map(f32::abs))
+        }
+    }
+
+    impl std::ops::Add for F32x4 {
+        type Output = Self;
+        #[inline(always)]
+        fn add(self, o: Self) -> Self {
+            self.zip(o, |a, b| a + b)
         }
     }
 
@@ -141,6 +217,14 @@ mod portable {
         #[inline(always)]
         fn mul(self, o: Self) -> Self {
             self.zip(o, |a, b| a * b)
+        }
+    }
+
+    impl std::ops::Div for F32x4 {
+        type Output = Self;
+        #[inline(always)]
+        fn div(self, o: Self) -> Self {
+            self.zip(o, |a, b| a / b)
         }
     }
 }
@@ -190,18 +274,19 @@ mod tests {
                 assert!(same(na.max_or(nb).to_array(), pa.max_or(pb).to_array()));
                 assert!(same(na.min_or(nb).to_array(), pa.min_or(pb).to_array()));
                 assert_eq!(na.le_mask(nb), pa.le_mask(pb));
-                let diff = (na - nb).to_array();
-                let prod = (na * nb).to_array();
-                let (pdiff, pprod) = ((pa - pb).to_array(), (pa * pb).to_array());
-                for k in 0..4 {
-                    // NaN payloads may differ; NaN-ness may not.
-                    assert_eq!(diff[k].is_nan(), pdiff[k].is_nan());
-                    assert_eq!(prod[k].is_nan(), pprod[k].is_nan());
-                    if !diff[k].is_nan() {
-                        assert_eq!(diff[k].to_bits(), pdiff[k].to_bits());
-                    }
-                    if !prod[k].is_nan() {
-                        assert_eq!(prod[k].to_bits(), pprod[k].to_bits());
+                assert_eq!(na.lt_mask(nb), pa.lt_mask(pb));
+                assert_eq!(na.eq_mask(nb), pa.eq_mask(pb));
+                assert_eq!(na.nan_mask(), pa.nan_mask());
+                assert!(same(na.abs().to_array(), pa.abs().to_array()));
+                let native = [na + nb, na - nb, na * nb, na / nb].map(F32x4::to_array);
+                let plain = [pa + pb, pa - pb, pa * pb, pa / pb].map(portable::F32x4::to_array);
+                for (n, p) in native.iter().zip(&plain) {
+                    for k in 0..4 {
+                        // NaN payloads may differ; NaN-ness may not.
+                        assert_eq!(n[k].is_nan(), p[k].is_nan());
+                        if !n[k].is_nan() {
+                            assert_eq!(n[k].to_bits(), p[k].to_bits());
+                        }
                     }
                 }
             }

@@ -3,6 +3,7 @@
 //! Embree's BVH4 does). On the seed scene this replaces about nine scalar box tests per
 //! ray with two or three node tests.
 
+pub use super::bvh_build::LeafCost;
 use super::bvh_build::{BinaryBvh, MAX_DEPTH};
 use crate::geometry::{Aabb, RayQuery};
 use crate::numerics::gamma;
@@ -230,7 +231,12 @@ impl Bvh {
     /// Builds over primitives with the given bounds; returns the tree and the order in
     /// which the primitives must be stored (leaf ranges index into that order).
     pub fn build(bounds: &[Aabb]) -> (Bvh, Vec<u32>) {
-        let (binary, order) = BinaryBvh::build(bounds);
+        Self::build_for(bounds, LeafCost::SINGLE)
+    }
+
+    /// Builds as `build` does, for leaves whose primitives are tested as `leaf` says.
+    pub fn build_for(bounds: &[Aabb], leaf: LeafCost) -> (Bvh, Vec<u32>) {
+        let (binary, order) = BinaryBvh::build(bounds, leaf);
         let mut bvh = Bvh {
             nodes: Vec::with_capacity(binary.nodes.len() / 2 + 1),
             bounds: binary.nodes.first().map(|n| n.bounds),
@@ -250,6 +256,21 @@ impl Bvh {
             nodes: vec![root],
             bounds: Some(bounds),
             coincident: Coincident::default(),
+        }
+    }
+
+    /// Re-points every leaf at what stands for its primitives: `f(range)` gives, for the
+    /// primitives `range` of a leaf, the range of the items that replace them (a mesh's
+    /// triangle groups). Called leaf by leaf in node order.
+    pub fn map_leaves(&mut self, mut f: impl FnMut(std::ops::Range<u32>) -> std::ops::Range<u32>) {
+        for node in &mut self.nodes {
+            for lane in 0..4 {
+                if let Child::Leaf(range) = node.child(lane) {
+                    let items = f(range);
+                    assert!(!items.is_empty(), "a leaf stands for at least one item");
+                    (node.child[lane], node.count[lane]) = (items.start, items.end - items.start);
+                }
+            }
         }
     }
 

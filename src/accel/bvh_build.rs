@@ -27,9 +27,27 @@ pub struct BinaryBvh {
 }
 
 const BINS: usize = 12;
-const MAX_LEAF: usize = 8;
 /// Cost of a box test relative to a primitive test, for the SAH.
 const TRAVERSAL_COST: f32 = 1.0;
+
+/// How a leaf's primitives are tested, for the SAH: `group` at a time (four triangles in
+/// SIMD lanes cost about what one does), and at most `max` in one leaf.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LeafCost {
+    pub group: usize,
+    pub max: usize,
+}
+
+impl LeafCost {
+    /// One primitive at a time: the scene's objects.
+    pub const SINGLE: LeafCost = LeafCost { group: 1, max: 8 };
+
+    /// What testing `n` primitives costs, in primitive tests.
+    #[inline(always)]
+    fn of(self, n: usize) -> f32 {
+        n.div_ceil(self.group) as f32
+    }
+}
 /// Leaves deeper than this are not split further, however large: it bounds the traversal
 /// stack (bvh.rs), and 2^32 leaves are more than any scene has.
 pub const MAX_DEPTH: usize = 32;
@@ -106,7 +124,7 @@ const UNUSED: BinaryNode = BinaryNode {
 impl BinaryBvh {
     /// Builds over primitives with the given bounds; returns the tree and the order in
     /// which the primitives must be stored (leaf ranges index into that order).
-    pub fn build(bounds: &[Aabb]) -> (BinaryBvh, Vec<u32>) {
+    pub fn build(bounds: &[Aabb], leaf: LeafCost) -> (BinaryBvh, Vec<u32>) {
         let mut items: Vec<BuildItem> = bounds
             .iter()
             .map(|b| BuildItem {
@@ -121,7 +139,12 @@ impl BinaryBvh {
         let mut nodes = vec![UNUSED; 2 * items.len() - 1];
         let (root, below) = nodes.split_at_mut(1);
         let around = Around::of(&items);
-        root[0] = build_node(&mut items, &mut order, around, below, 1, 0, 0);
+        let at = Place {
+            base: 1,
+            offset: 0,
+            depth: 0,
+        };
+        root[0] = build_node(&mut items, &mut order, around, below, at, leaf);
         (BinaryBvh { nodes }, order)
     }
 }
@@ -154,19 +177,31 @@ impl Around {
     }
 }
 
-/// The node over `items` (primitives `offset ..` of the final order; `around` is their
-/// boxes' box and their centroids'), with its descendants written into `below`, whose
-/// first slot is node `base`: the two children, then the left child's descendants, then
-/// the right child's.
+/// Where a node's subtree goes: its descendants' first slot is node `base`, its primitives
+/// are `offset ..` of the final order, and it lies `depth` below the root.
+#[derive(Clone, Copy)]
+struct Place {
+    base: usize,
+    offset: usize,
+    depth: usize,
+}
+
+/// The node over `items` (`around` is their boxes' box and their centroids'), with its
+/// descendants written into `below`, whose first slot is node `at.base`: the two children,
+/// then the left child's descendants, then the right child's.
 fn build_node(
     items: &mut [BuildItem],
     order: &mut [u32],
     around: Around,
     below: &mut [BinaryNode],
-    base: usize,
-    offset: usize,
-    depth: usize,
+    at: Place,
+    leaf_cost: LeafCost,
 ) -> BinaryNode {
+    let Place {
+        base,
+        offset,
+        depth,
+    } = at;
     let n = items.len();
     let (bounds, centroid_bounds) = (around.boxes.aabb(), around.centroids.aabb());
     let leaf = BinaryNode {
@@ -179,8 +214,9 @@ fn build_node(
         return leaf;
     }
     let extent = centroid_bounds.max - centroid_bounds.min;
-    let (mid, left_around, right_around) = match best_split(items, &bounds, &centroid_bounds) {
-        Some((cost, axis, split)) if cost < n as f32 || n > MAX_LEAF => {
+    let best = best_split(items, &bounds, &centroid_bounds, leaf_cost);
+    let (mid, left_around, right_around) = match best {
+        Some((cost, axis, split)) if cost < leaf_cost.of(n) || n > leaf_cost.max => {
             let scale = BINS as f32 / extent[axis];
             let min = centroid_bounds.min[axis];
             partition(items, order, |c| {
@@ -189,7 +225,7 @@ fn build_node(
         }
         Some(_) => return leaf,
         // All centroids coincide: split in the middle if the leaf would be too large.
-        None if n > MAX_LEAF => {
+        None if n > leaf_cost.max => {
             let mid = n / 2;
             (mid, Around::of(&items[..mid]), Around::of(&items[mid..]))
         }
@@ -202,27 +238,20 @@ fn build_node(
     let left_base = base + 2;
     let right_base = left_base + left_below.len();
     let left = |items: &mut [BuildItem], order: &mut [u32], below: &mut [BinaryNode]| {
-        build_node(
-            items,
-            order,
-            left_around,
-            below,
-            left_base,
+        let at = Place {
+            base: left_base,
             offset,
-            depth + 1,
-        )
+            depth: depth + 1,
+        };
+        build_node(items, order, left_around, below, at, leaf_cost)
     };
     let right = |items: &mut [BuildItem], order: &mut [u32], below: &mut [BinaryNode]| {
-        let offset = offset + mid;
-        build_node(
-            items,
-            order,
-            right_around,
-            below,
-            right_base,
-            offset,
-            depth + 1,
-        )
+        let at = Place {
+            base: right_base,
+            offset: offset + mid,
+            depth: depth + 1,
+        };
+        build_node(items, order, right_around, below, at, leaf_cost)
     };
     let (l, r) = if n >= PARALLEL_MIN {
         rayon::join(
@@ -250,6 +279,7 @@ fn best_split(
     items: &[BuildItem],
     bounds: &Aabb,
     centroid_bounds: &Aabb,
+    leaf: LeafCost,
 ) -> Option<(f32, usize, usize)> {
     let extent = centroid_bounds.max - centroid_bounds.min;
     let extent_a = Vec3A::from(extent);
@@ -306,7 +336,7 @@ fn best_split(
             acc = acc.merge(bins[full[j - 1]]);
             cnt += counts[full[j - 1]];
             let cost = TRAVERSAL_COST
-                + (acc.aabb().half_area() * cnt as f32 + right_area[j] * right_count[j] as f32)
+                + (acc.aabb().half_area() * leaf.of(cnt) + right_area[j] * leaf.of(right_count[j]))
                     / parent_area;
             if best.is_none_or(|(c, _, _)| cost < c) {
                 best = Some((cost, axis, full[j - 1] + 1));
@@ -388,7 +418,7 @@ mod tests {
         // Below and far above the size at which subtrees go to other threads.
         for n in [1, 2, 9, 100, 3 * PARALLEL_MIN] {
             let bounds = boxes(n);
-            let (bvh, order) = BinaryBvh::build(&bounds);
+            let (bvh, order) = BinaryBvh::build(&bounds, LeafCost::SINGLE);
             assert_eq!(order.len(), n);
             let mut seen = vec![false; n];
             check(&bounds, &bvh, &order, 0, &mut seen);
@@ -399,12 +429,12 @@ mod tests {
     #[test]
     fn the_tree_does_not_depend_on_the_threads() {
         let bounds = boxes(4 * PARALLEL_MIN);
-        let (a, order_a) = BinaryBvh::build(&bounds);
+        let (a, order_a) = BinaryBvh::build(&bounds, LeafCost::SINGLE);
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(1)
             .build()
             .unwrap();
-        let (b, order_b) = pool.install(|| BinaryBvh::build(&bounds));
+        let (b, order_b) = pool.install(|| BinaryBvh::build(&bounds, LeafCost::SINGLE));
         assert_eq!(order_a, order_b);
         assert_eq!(a.nodes.len(), b.nodes.len());
         for (x, y) in a.nodes.iter().zip(&b.nodes) {

@@ -3,12 +3,19 @@
 //! instance by being taken into the model's space, without renormalising its direction, so
 //! distances along it mean the same in both spaces.
 
-use super::bvh::Bvh;
+use super::bvh::{Bvh, LeafCost};
 use crate::geometry::{
-    Aabb, HitDetail, Mesh, Ray, RayQuery, Shape, ShapeHit, SurfacePoint, Transform,
+    Aabb, GROUP_WIDTH, GroupRay, HitDetail, Mesh, Ray, RayQuery, Shape, ShapeHit, SurfacePoint,
+    Transform, TriangleGroup,
 };
 use glam::Vec3A;
 use std::sync::Arc;
+
+/// A mesh's leaves hold its triangles in groups of four, tested at once.
+const GROUPED: LeafCost = LeafCost {
+    group: GROUP_WIDTH,
+    max: 2 * GROUP_WIDTH,
+};
 
 /// What an instance places: built once, shared by every instance of it.
 #[derive(Clone, Debug)]
@@ -17,8 +24,10 @@ pub enum Model {
     Mesh {
         /// The mesh.
         mesh: Mesh,
-        /// The hierarchy over its triangles.
+        /// The hierarchy over its triangles, whose leaves hold groups.
         bvh: Bvh,
+        /// Each leaf's triangles in groups of up to four, tested at once.
+        groups: Vec<TriangleGroup>,
     },
     /// One shape, for a shape under a transform that its own parameters cannot express
     /// (an ellipsoid, a tilted cylinder).
@@ -28,12 +37,25 @@ pub enum Model {
 impl Model {
     /// The model of `mesh`, with the hierarchy over its triangles built.
     pub fn mesh(mut mesh: Mesh) -> Self {
+        use rayon::prelude::*;
         let bounds: Vec<Aabb> = (0..mesh.triangle_count() as u32)
+            .into_par_iter()
             .map(|i| mesh.triangle_bounds(i))
             .collect();
-        let (bvh, order) = Bvh::build(&bounds);
+        let (mut bvh, order) = Bvh::build_for(&bounds, GROUPED);
         mesh.reorder(&order);
-        Model::Mesh { mesh, bvh }
+        let mut groups = Vec::with_capacity(mesh.triangle_count().div_ceil(GROUP_WIDTH));
+        bvh.map_leaves(|triangles| {
+            let start = groups.len() as u32;
+            for first in triangles.clone().step_by(GROUP_WIDTH) {
+                let count = (triangles.end - first).min(GROUP_WIDTH as u32);
+                let corners: [[Vec3A; 3]; GROUP_WIDTH] =
+                    std::array::from_fn(|k| mesh.corners(first + (k as u32).min(count - 1)));
+                groups.push(TriangleGroup::new(first, &corners[..count as usize]));
+            }
+            start..groups.len() as u32
+        });
+        Model::Mesh { mesh, bvh, groups }
     }
 
     /// The box around it in its own space.
@@ -56,8 +78,8 @@ impl Model {
     /// corner lists and the hierarchy's nodes (0 for a shape).
     pub fn index_bytes(&self) -> usize {
         match self {
-            Model::Mesh { mesh, bvh } => {
-                mesh.triangle_bytes() + bvh.nodes.len() * size_of_val(&bvh.nodes[0])
+            Model::Mesh { mesh, bvh, groups } => {
+                mesh.triangle_bytes() + size_of_val(&bvh.nodes[..]) + size_of_val(&groups[..])
             }
             Model::Shape(_) => 0,
         }
@@ -66,16 +88,14 @@ impl Model {
     #[inline]
     fn intersect_after(&self, q: &RayQuery, t_min: f32, t_max: f32) -> Option<ShapeHit> {
         match self {
-            Model::Mesh { mesh, bvh } => {
+            Model::Mesh { bvh, groups, .. } => {
+                let ray = GroupRay::new(q);
                 let mut best = None;
-                bvh.closest(q, t_max, |i, t_max| {
-                    let hit = mesh.intersect(i, q, t_min, t_max)?;
+                bvh.closest(q, t_max, |g, t_max| {
+                    let (triangle, hit) = groups[g as usize].closest(q, &ray, t_min, t_max)?;
                     best = Some(ShapeHit {
                         t: hit.t,
-                        detail: HitDetail::Mesh {
-                            triangle: i,
-                            b: hit.b,
-                        },
+                        detail: HitDetail::Mesh { triangle, b: hit.b },
                     });
                     Some(hit.t)
                 });
@@ -88,10 +108,11 @@ impl Model {
     #[inline]
     fn occludes(&self, q: &RayQuery, t_max: f32) -> bool {
         match self {
-            Model::Mesh { mesh, bvh } => {
+            Model::Mesh { bvh, groups, .. } => {
+                let ray = GroupRay::new(q);
                 let mut hit = false;
-                bvh.visit(q, t_max, |i| {
-                    hit = mesh.intersect(i, q, 0.0, t_max).is_some();
+                bvh.visit(q, t_max, |g| {
+                    hit = groups[g as usize].any(q, &ray, 0.0, t_max);
                     !hit
                 });
                 hit
@@ -103,10 +124,11 @@ impl Model {
     #[inline]
     fn crossings(&self, q: &RayQuery, t_max: f32) -> u32 {
         match self {
-            Model::Mesh { mesh, bvh } => {
+            Model::Mesh { bvh, groups, .. } => {
+                let ray = GroupRay::new(q);
                 let mut crossings = 0;
-                bvh.visit(q, t_max, |i| {
-                    crossings += mesh.intersect(i, q, 0.0, t_max).is_some() as u32;
+                bvh.visit(q, t_max, |g| {
+                    crossings += groups[g as usize].crossings(q, &ray, 0.0, t_max);
                     true
                 });
                 crossings
@@ -286,6 +308,44 @@ mod tests {
             assert_eq!(model.crossings(&q, f32::INFINITY), 2);
             assert!(model.occludes(&q, f32::INFINITY));
         }
+    }
+
+    /// Every triangle of a mesh is in exactly one group, each group in one leaf of at most
+    /// two groups, inside that leaf's box; groups are full but for a leaf's last.
+    #[test]
+    fn a_meshs_leaves_hold_its_triangles_in_groups_once() {
+        use super::super::bvh::Child;
+        let model = Model::mesh(unit_cube_mesh().subdivided().subdivided().subdivided());
+        let Model::Mesh { mesh, bvh, groups } = &model else {
+            unreachable!()
+        };
+        let mut seen = vec![0u32; mesh.triangle_count()];
+        for node in &bvh.nodes {
+            for lane in 0..4 {
+                let Child::Leaf(range) = node.child(lane) else {
+                    continue;
+                };
+                assert!(range.len() <= GROUPED.max / GROUP_WIDTH, "{range:?}");
+                let b = node.bounds(lane);
+                for (k, g) in range.clone().enumerate() {
+                    let triangles = groups[g as usize].triangles();
+                    if k + 1 < range.len() {
+                        assert_eq!(triangles.len(), GROUP_WIDTH);
+                    }
+                    for t in triangles {
+                        seen[t as usize] += 1;
+                        assert_eq!(b.union(mesh.triangle_bounds(t)), b);
+                    }
+                }
+            }
+        }
+        assert!(seen.iter().all(|&n| n == 1));
+        // The SAH fills groups: far fewer groups than triangles.
+        assert!(
+            groups.len() * 3 < mesh.triangle_count() * 2,
+            "{}",
+            groups.len()
+        );
     }
 
     /// A sphere scaled by (2, 1, 1) is an ellipsoid: hit where x²/4 + y² + z² = 1, with

@@ -21,9 +21,9 @@ pub struct Config {
     pub out_dir: PathBuf,
 }
 
-/// Median seconds of `runs` calls of `f`.
-pub(super) fn median(runs: usize, mut f: impl FnMut()) -> f64 {
-    let mut times: Vec<f64> = (0..runs)
+/// Seconds of each of `runs` calls of `f` (at least one), fastest first.
+pub(super) fn sorted_times(runs: usize, mut f: impl FnMut()) -> Vec<f64> {
+    let mut times: Vec<f64> = (0..runs.max(1))
         .map(|_| {
             let start = Instant::now();
             f();
@@ -31,6 +31,12 @@ pub(super) fn median(runs: usize, mut f: impl FnMut()) -> f64 {
         })
         .collect();
     times.sort_by(f64::total_cmp);
+    times
+}
+
+/// Median seconds of `runs` calls of `f`.
+pub(super) fn median(runs: usize, f: impl FnMut()) -> f64 {
+    let times = sorted_times(runs, f);
     times[times.len() / 2]
 }
 

@@ -6,6 +6,7 @@ mod numerics;
 mod scale;
 mod scenes;
 mod soft_shadows;
+mod speed;
 
 use anyhow::Result;
 
@@ -69,6 +70,19 @@ pub enum BenchKind {
         #[arg(long, default_value_t = 5)]
         runs: usize,
     },
+    /// prism beside POV-Ray on the seed scene and Embree on meshes, where they are
+    /// installed (docs/benchmarks/speed.md).
+    Speed {
+        /// A 200×150 seed image and a 59k-triangle mesh: proves the bench works.
+        #[arg(long)]
+        quick: bool,
+        /// Where speed.md goes (default: prism-bench/speed in the working directory).
+        #[arg(long)]
+        out: Option<std::path::PathBuf>,
+        /// Timed runs of each whole-process figure (the median is reported).
+        #[arg(long, default_value_t = 5)]
+        runs: usize,
+    },
     /// Numerical accuracy tables (docs/numerics.md).
     Numerics {
         /// Timed runs per configuration (the median is reported).
@@ -109,6 +123,11 @@ fn run_in_pool(args: BenchArgs) -> Result<()> {
             quick,
             runs: runs.max(1),
             out_dir: out.unwrap_or_else(|| std::path::Path::new("prism-bench").join("scale")),
+        }),
+        BenchKind::Speed { quick, out, runs } => speed::run(speed::Config {
+            quick,
+            runs: runs.max(1),
+            out_dir: out.unwrap_or_else(|| std::path::Path::new("prism-bench").join("speed")),
         }),
         BenchKind::Edit { quick, out, runs } => edit::run(edit::Config {
             quick,

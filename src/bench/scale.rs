@@ -30,7 +30,7 @@ pub struct Config {
 }
 
 /// `mesh` as OBJ text.
-fn to_obj(mesh: &Mesh) -> String {
+pub(super) fn to_obj(mesh: &Mesh) -> String {
     let mut out = String::with_capacity(mesh.triangle_count() * 40);
     for p in mesh.positions() {
         let _ = writeln!(out, "v {} {} {}", p.x, p.y, p.z);

@@ -193,8 +193,12 @@ impl Mesh {
     /// Stores the triangles in `order` (a permutation of their indices): the order of
     /// the hierarchy's leaves.
     pub fn reorder(&mut self, order: &[u32]) {
+        use rayon::prelude::*;
         debug_assert_eq!(order.len(), self.triangles.len());
-        self.triangles = order.iter().map(|&i| self.triangles[i as usize]).collect();
+        self.triangles = order
+            .par_iter()
+            .map(|&i| self.triangles[i as usize])
+            .collect();
     }
 
     /// The watertight test of triangle `i`: its hit with t in (t_min, t_max).

@@ -14,6 +14,7 @@ mod sphere;
 mod torus;
 mod transform;
 mod triangle;
+mod triangle_group;
 
 pub use aabb::Aabb;
 pub use cone::Cone;
@@ -27,3 +28,4 @@ pub use sphere::Sphere;
 pub use torus::Torus;
 pub use transform::Transform;
 pub use triangle::{Triangle, TriangleHit};
+pub use triangle_group::{GROUP_WIDTH, GroupRay, TriangleGroup};
