@@ -9,7 +9,7 @@
 //! every primary ray (docs/benchmarks/README.md). Tiles that too many boxes cover fall
 //! back to the BVH, which then does better.
 
-use super::{Primitive, Surface};
+use super::primitive::{Primitive, Surface};
 use crate::camera::CameraRays;
 use crate::geometry::Shape;
 use glam::DVec3;

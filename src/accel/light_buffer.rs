@@ -11,7 +11,7 @@
 //! start on the floor under an empty sky (docs/benchmarks/README.md). Cells that too many
 //! boxes cover fall back to the BVH.
 
-use super::Primitive;
+use super::primitive::Primitive;
 use glam::{DVec3, Vec3};
 
 /// Cells along each side of a cube face.

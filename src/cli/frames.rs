@@ -1,7 +1,7 @@
 //! Which frames of an animation a render command renders, and the file each goes to: an
 //! output template such as `frames/seed_{frame:04}.png`.
 
-use super::render::{BadOption, RenderArgs};
+use super::render_args::{BadOption, RenderArgs};
 use anyhow::{Result, bail};
 use prism::scene::Animation;
 use std::path::PathBuf;

@@ -3,6 +3,7 @@
 mod frames;
 mod output_paths;
 mod render;
+mod render_args;
 mod stats;
 mod stitch;
 mod stop;
@@ -37,7 +38,7 @@ pub enum Command {
     View(ViewArgs),
     /// Render a scene to an image file (PNG, JPEG, EXR, PFM), headless: a whole frame, a
     /// region or tile, one frame of an animation or a range of them.
-    Render(render::RenderArgs),
+    Render(render_args::RenderArgs),
     /// Assemble tiles rendered with --tile or --region into the whole frame.
     Stitch(stitch::StitchArgs),
     /// Measure speed and accuracy (the figures in docs/).
@@ -163,7 +164,7 @@ pub fn exit_code(error: &anyhow::Error) -> u8 {
             || e.is::<RegionError>()
             || e.is::<StitchError>()
             || e.is::<ReadError>()
-            || e.is::<render::BadOption>()
+            || e.is::<render_args::BadOption>()
     });
     if bad_input { 2 } else { 1 }
 }

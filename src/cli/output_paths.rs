@@ -3,7 +3,7 @@
 //! same command (`-o img.png --stats-json img.png`), and an output's missing folders are
 //! made, as a user who names `frames/shot_{frame:04}.png` in a fresh folder expects.
 
-use super::render::BadOption;
+use super::render_args::BadOption;
 use anyhow::{Result, bail};
 use prism::messages::{io_message, shown_path};
 use prism::render::OutputError;

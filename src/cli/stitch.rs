@@ -1,7 +1,7 @@
 //! `prism stitch TILES… -o OUT`: the frame that tiles rendered apart make, written as one
 //! image; refused, with the tiles named, when they are missing, overlap or disagree.
 
-use super::render::BadOption;
+use super::render_args::BadOption;
 use anyhow::{Result, bail};
 use prism::messages::shown_path;
 use prism::render::{ImageFormat, OutputOptions, PendingFile, PixelType};

@@ -202,7 +202,7 @@ impl PendingFile {
             let mut writer = BufWriter::new(file);
             match format {
                 ImageFormat::Png => {
-                    write_png(&mut writer, image, options.encoding.transfer, placement)?
+                    encode_png(&mut writer, image, options.encoding.transfer, placement)?
                 }
                 ImageFormat::Jpeg => {
                     let encoder =
@@ -229,6 +229,12 @@ impl PendingFile {
     }
 }
 
+/// Writes `image` to `path` as a PNG, atomically; the path must name a PNG.
+pub fn write_png(path: &Path, image: &image::RgbImage) -> Result<PathBuf, OutputError> {
+    ImageFormat::from_path(path)?;
+    PendingFile::create(path)?.finish_png(image)
+}
+
 /// An image crate error in plain words (an I/O cause said once).
 pub(super) fn image_message(e: image::ImageError) -> String {
     match e {
@@ -239,7 +245,7 @@ pub(super) fn image_message(e: image::ImageError) -> String {
 
 /// A PNG of the image's own depth, tagged with its transfer curve (so that viewers show a
 /// linear file as linear, not as sRGB), with the placement as a text chunk.
-fn write_png(
+fn encode_png(
     writer: &mut impl Write,
     image: &DynamicImage,
     transfer: Transfer,

@@ -19,13 +19,13 @@ pub use accumulator::{Accumulator, PixelSum, luminance, to_8bit};
 pub use compare::fraction_differing;
 pub use heat_map::{ERROR_SCALE, Legend, View, mean_error, scale_color, write_view_rgba8};
 pub use image_file::{
-    BitDepth, ImageFormat, OutputOptions, PLACEMENT_KEY, Placement, encode, sidecar_path,
+    BitDepth, ImageFormat, OutputOptions, PLACEMENT_KEY, Placement, encode, sidecar_path, write_png,
 };
 pub use image_read::{
     ImageInfo, PixelType, ReadError, ReadImage, read_image, read_image_info, read_pixels,
 };
 pub use memory::{MemorySource, RenderMemory, available_memory, gib};
-pub use output::{OutputError, PendingFile, remove_pending_files, write_bytes, write_png};
+pub use output::{OutputError, PendingFile, remove_pending_files, write_bytes};
 pub use pass::{BAND_ROWS, PassStats, render_pass};
 pub use progressive::{PassOutcome, ProgressiveRender};
 pub use region::{PixelRect, RegionError, adaptive_margin};

@@ -8,7 +8,6 @@
 //! moment of writing leaves `.NAME.PID-N.tmp`, which the next write of the same file removes
 //! once no process of that number runs.
 
-use super::image_file::ImageFormat;
 use crate::messages::io_message;
 use std::fs::{File, OpenOptions};
 use std::io::{BufWriter, Write};
@@ -325,12 +324,6 @@ impl PendingFile {
     }
 }
 
-/// Writes `image` to `path` as a PNG, atomically.
-pub fn write_png(path: &Path, image: &image::RgbImage) -> Result<PathBuf, OutputError> {
-    ImageFormat::from_path(path)?;
-    PendingFile::create(path)?.finish_png(image)
-}
-
 /// Writes `bytes` to `path`, atomically.
 pub fn write_bytes(path: &Path, bytes: &[u8]) -> Result<PathBuf, OutputError> {
     PendingFile::create(path)?.finish_bytes(bytes)
@@ -345,7 +338,10 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("out.png");
         let img = image::RgbImage::from_pixel(3, 2, image::Rgb([10, 20, 30]));
-        write_png(&path, &img).unwrap();
+        PendingFile::create(&path)
+            .unwrap()
+            .finish_png(&img)
+            .unwrap();
         let back = image::open(&path).unwrap().into_rgb8();
         assert_eq!(back, img);
         let files: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();

@@ -3,6 +3,7 @@
 
 mod brackets;
 mod entry;
+mod entry_def;
 mod fixed_array;
 mod meshes;
 mod placement;
@@ -18,7 +19,8 @@ use crate::appearance::{ImageTexture, Texture, TextureError, UvTransform};
 use crate::camera::Camera;
 use crate::limits;
 use crate::messages::{did_you_mean, number, quoted};
-use entry::{EntryDef, entry_label};
+use entry::entry_label;
+use entry_def::EntryDef;
 use fixed_array::Fixed;
 use glam::Vec3;
 use placement::Placement;

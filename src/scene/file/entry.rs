@@ -3,6 +3,7 @@
 //! another placement, as a load of the file with those values would validate it (the
 //! viewer's transform edits).
 
+use super::entry_def::EntryDef;
 use super::fixed_array::Fixed;
 use super::solids::{BoxDef, ConeDef, DiscDef, PlaneDef, TorusDef};
 use super::{
@@ -14,17 +15,6 @@ use crate::scene::description::{ObjectPlacement, Scene, ShapeDesc};
 use crate::scene::error::SceneError;
 use crate::scene::spans::FieldSpans;
 use std::path::PathBuf;
-
-/// The fields every object entry has, whatever its shape.
-pub(super) trait EntryDef {
-    fn name(&self) -> Option<&str>;
-    fn material(&self) -> Option<&str>;
-    fn shadow(&self) -> Option<bool>;
-    /// Its `translate`, `rotate` and `scale`, as read.
-    fn placement(&self) -> (Option<P3>, Option<V3>, Option<&toml::Value>);
-    /// Gives it `p`'s `translate`, `rotate` and `scale` in place of its own.
-    fn set_placement(&mut self, p: &ObjectPlacement);
-}
 
 macro_rules! entry_defs {
     ($($def:ty),*) => {$(

@@ -2,13 +2,13 @@
 //! right-handed, as POV-Ray's `rotate`), then `translate`, in the scene file's own (world)
 //! coordinates and in f64, so that a transform of a far-off scene keeps its precision.
 
-use super::entry::EntryDef;
+use super::entry_def::EntryDef;
 use super::fixed_array::Fixed;
 use super::{Item, P3, Validator};
 use crate::geometry::Transform;
 use crate::limits;
 use crate::messages::number;
-use crate::scene::ObjectPlacement;
+use crate::scene::description::ObjectPlacement;
 use crate::scene::error::SceneError;
 use glam::{Affine3A, DMat3, DVec3, Mat3A, Vec3A};
 
