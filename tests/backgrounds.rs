@@ -1,14 +1,15 @@
 //! Backgrounds beyond a colour: a vertical gradient and a latitude-longitude image, seen by
 //! primary rays (through empty first-hit tiles too) and by reflections; bad ones refused.
 
+mod common;
+
 use glam::Vec3;
 use prism::accel::Reach;
 use prism::geometry::Ray;
 use prism::integrator::Integrator;
-use prism::render::{RenderSettings, render};
+use prism::render::RenderSettings;
 use prism::scene::{PreparedScene, Scene, parse_scene};
 use std::path::Path;
-use std::sync::Arc;
 
 fn scene_in(dir: &Path, render: &str, objects: &str) -> Result<Scene, prism::scene::SceneError> {
     let text = format!(
@@ -52,14 +53,7 @@ fn a_gradient_background_runs_from_bottom_to_top_in_every_ray() {
     assert_eq!(look(&scene, Vec3::NEG_Y), Vec3::new(0.0, 0.0, 1.0));
     assert!((look(&scene, Vec3::NEG_Z) - Vec3::new(0.5, 0.25, 0.5)).length() < 1e-6);
     // A render of the empty scene (every first-hit tile empty): rows brighten upwards.
-    let image = render(
-        Arc::new(PreparedScene::new(&scene)),
-        scene.camera,
-        RenderSettings::new(16, 16, 1),
-        |_, _| {},
-    )
-    .accumulator()
-    .to_rgb8();
+    let image = common::render_scene(&scene, RenderSettings::new(16, 16, 1));
     let red = |y: u32| image.get_pixel(8, y)[0];
     assert!(
         (0..15).all(|y| red(y) >= red(y + 1)),

@@ -3,16 +3,17 @@
 //! tints, glossy reflection and fog; and with each effect on, no NaN and the same image at
 //! every scale.
 
+mod common;
+
 use glam::{DVec3, Vec3, Vec3A};
 use prism::accel::Reach;
 use prism::appearance::schlick_reflectance;
 use prism::geometry::Ray;
 use prism::integrator::Integrator;
-use prism::render::{self, RenderSettings, fraction_differing};
+use prism::render::{RenderSettings, fraction_differing};
 use prism::sampler::SampleStream;
 use prism::scene::{PreparedScene, Scene, parse_scene};
 use std::path::Path;
-use std::sync::Arc;
 
 fn load(text: &str) -> Scene {
     parse_scene(text, Path::new("effects.toml"), Path::new(".")).unwrap()
@@ -147,14 +148,7 @@ fn the_lens_focuses_on_its_plane_and_blurs_by_the_circle_of_confusion() {
 fn image(scene: &Scene, samples: u32) -> image::RgbImage {
     let mut settings = RenderSettings::new(64, 48, 1);
     settings.samples = Some(samples);
-    render::render(
-        Arc::new(PreparedScene::new(scene)),
-        scene.camera,
-        settings,
-        |_, _| {},
-    )
-    .accumulator()
-    .to_rgb8()
+    common::render_scene(scene, settings)
 }
 
 fn colour_at(scene: &Scene, dir: Vec3) -> Vec3 {

@@ -2,20 +2,12 @@
 //! `prism stitch` and its refusals, animation frames, output formats and colour, a clean
 //! stop, and the GNU parallel recipe of docs/farm.md run for real.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
-fn prism(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_prism"))
-        .args(args)
-        .output()
-        .expect("prism runs")
-}
-
-fn stderr(out: &Output) -> String {
-    String::from_utf8_lossy(&out.stderr).into_owned()
-}
+mod common;
+use common::{Dir, prism, stderr};
 
 /// Runs prism and asserts it succeeded.
 fn ok(args: &[&str]) -> String {
@@ -34,28 +26,6 @@ fn refused(args: &[&str], needles: &[&str]) -> String {
         assert!(e.contains(n), "{args:?}: expected {n:?} in: {e}");
     }
     e
-}
-
-struct Dir(tempfile::TempDir);
-
-impl Dir {
-    fn new() -> Self {
-        Self(tempfile::tempdir().unwrap())
-    }
-    fn path(&self, name: &str) -> PathBuf {
-        self.0.path().join(name)
-    }
-    fn s(&self, name: &str) -> String {
-        self.path(name).to_str().unwrap().to_string()
-    }
-    fn files(&self) -> Vec<String> {
-        let mut names: Vec<String> = std::fs::read_dir(self.0.path())
-            .unwrap()
-            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-            .collect();
-        names.sort();
-        names
-    }
 }
 
 fn rgb8(path: &Path) -> image::RgbImage {
@@ -821,21 +791,10 @@ fn run_script(name: &str) -> (Output, String) {
 
 /// The GNU parallel recipe of docs/farm.md (tests/farm/parallel.sh): tiles rendered by
 /// `parallel` and stitched, and frames rendered one job each, equal to one process's
-/// render bit for bit. CI sets PRISM_REQUIRE_FARM_TEST, so there it must run.
+/// render bit for bit.
 #[test]
 fn the_gnu_parallel_recipe_reproduces_one_process_bit_for_bit() {
-    let have = |tool: &str| {
-        Command::new("sh")
-            .args(["-c", &format!("command -v {tool}")])
-            .output()
-            .is_ok_and(|o| o.status.success())
-    };
-    if !(have("parallel") && have("compare")) {
-        assert!(
-            std::env::var_os("PRISM_REQUIRE_FARM_TEST").is_none(),
-            "GNU parallel and ImageMagick's compare are needed"
-        );
-        eprintln!("skipped: GNU parallel or ImageMagick's compare is not installed");
+    if !common::tools_present("the GNU parallel recipe", &["parallel", "compare"]) {
         return;
     }
     let (out, text) = run_script("parallel.sh");

@@ -2,11 +2,12 @@
 //! equations say, the seed's fixed shares are untouched without it, and the option is
 //! refused where it means nothing.
 
-use prism::render::{self, RenderSettings};
+mod common;
+
+use prism::render::RenderSettings;
 use prism::sampler::SampleLayout;
-use prism::scene::{PreparedScene, Scene, parse_scene};
+use prism::scene::{Scene, parse_scene};
 use std::path::Path;
-use std::sync::Arc;
 
 /// A white sky over a sheet of glass (eta 1.5, all of its light split by Fresnel), over a
 /// black floor: a pixel sees R·white by reflection plus (1 − R)·black through the sheet.
@@ -32,14 +33,7 @@ fn load(text: &str) -> Scene {
 fn render_centres(scene: &Scene, w: u32, h: u32) -> image::RgbImage {
     let mut settings = RenderSettings::new(w, h, 1);
     settings.layout = SampleLayout::Grid;
-    render::render(
-        Arc::new(PreparedScene::new(scene)),
-        scene.camera,
-        settings,
-        |_, _| {},
-    )
-    .accumulator()
-    .to_rgb8()
+    common::render_scene(scene, settings)
 }
 
 /// The exact unpolarised reflectance from air into eta 1.5 at `theta` from the normal.

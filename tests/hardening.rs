@@ -2,21 +2,12 @@
 //! to `prism render` and to the library ends in a located message and exit code 2, or in
 //! a bounded render, never in a panic, a hang, runaway memory or a damaged file.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
-fn prism(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_prism"))
-        .args(args)
-        .stdin(Stdio::null())
-        .output()
-        .expect("prism runs")
-}
-
-fn stderr(out: &Output) -> String {
-    String::from_utf8_lossy(&out.stderr).into_owned()
-}
+mod common;
+use common::{Dir, prism, stderr};
 
 const SPHERE: &str = r#"
 [camera]
@@ -39,30 +30,7 @@ radius = 1
 material = "glass"
 "#;
 
-struct Dir(tempfile::TempDir);
-
 impl Dir {
-    fn new() -> Self {
-        Dir(tempfile::tempdir().unwrap())
-    }
-    fn path(&self, name: &str) -> PathBuf {
-        self.0.path().join(name)
-    }
-    fn write(&self, name: &str, text: &str) -> PathBuf {
-        let p = self.path(name);
-        std::fs::write(&p, text).unwrap();
-        p
-    }
-    /// The names in the folder other than `keep`.
-    fn others(&self, keep: &[&str]) -> Vec<String> {
-        let mut names: Vec<String> = std::fs::read_dir(self.0.path())
-            .unwrap()
-            .map(|e| e.unwrap().file_name().into_string().unwrap())
-            .filter(|n| !keep.contains(&n.as_str()))
-            .collect();
-        names.sort();
-        names
-    }
     /// `prism render SCENE -o out.png --quiet` at 40×30 plus `extra`.
     fn render(&self, scene: &Path, extra: &[&str]) -> Output {
         render_to(scene, &self.path("out.png"), extra)

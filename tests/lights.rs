@@ -1,6 +1,8 @@
 //! Lights beyond the seed's: inverse-square falloff and directional (sun) light, against
 //! analytic values, under scaling, and every bad light refused with its line.
 
+mod common;
+
 use glam::Vec3;
 use prism::accel::Reach;
 use prism::geometry::Ray;
@@ -99,23 +101,12 @@ fn a_directional_light_lights_by_angle_and_casts_parallel_shadows() {
 #[test]
 fn an_inverse_square_scene_scaled_draws_the_same_image() {
     // `Scene::transformed` scales the intensity with the square of the scale.
-    use prism::render::{RenderSettings, fraction_differing, render};
-    use std::sync::Arc;
+    use prism::render::{RenderSettings, fraction_differing};
     let scene = floor_scene(
         "[[lights]]\nposition = [2, 4, 1]\nfalloff = \"inverse_square\"\nintensity = 30",
         "\n[[spheres]]\ncenter = [0, 1, 0]\nradius = 1\nmaterial = \"matte\"\n",
     );
-    let image = |s: &Scene| {
-        let s = s.clone();
-        render(
-            Arc::new(PreparedScene::new(&s)),
-            s.camera,
-            RenderSettings::new(80, 60, 1),
-            |_, _| {},
-        )
-        .accumulator()
-        .to_rgb8()
-    };
+    let image = |s: &Scene| common::render_scene(s, RenderSettings::new(80, 60, 1));
     let base = image(&scene);
     for scale in [1e-3f32, 1e4] {
         let scaled = scene.transformed(scale, glam::DVec3::new(1e3, 0.0, -2e3));

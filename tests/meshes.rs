@@ -3,10 +3,12 @@
 //! rotation convention), shared models, and every bad mesh or placement refused with its
 //! file and line.
 
+mod common;
+
 use glam::Vec3;
 use prism::accel::{Reach, Surface};
 use prism::geometry::{Ray, RayQuery};
-use prism::render::{self, RenderSettings};
+use prism::render::RenderSettings;
 use prism::scene::{PreparedScene, Scene, SceneError, ShapeDesc, load_scene, parse_scene};
 use std::path::Path;
 use std::sync::Arc;
@@ -71,16 +73,7 @@ fn load_with(
 }
 
 fn image(scene: &Scene, w: u32, h: u32) -> Vec<u8> {
-    let prepared = Arc::new(PreparedScene::new(scene));
-    render::render(
-        prepared,
-        scene.camera,
-        RenderSettings::new(w, h, 2),
-        |_, _| {},
-    )
-    .accumulator()
-    .to_rgb8()
-    .into_raw()
+    common::render_scene(scene, RenderSettings::new(w, h, 2)).into_raw()
 }
 
 fn bunny_path() -> String {

@@ -1,19 +1,15 @@
 //! Every shortcut the tracer takes must leave the image as the unoptimised path draws it.
 
+mod common;
+
+use common::{render_prepared, seed};
 use prism::accel::AccelOptions;
-use prism::render::{self, RenderSettings};
+use prism::render::RenderSettings;
 use prism::scene::{PreparedScene, Scene};
 use std::sync::Arc;
 
-fn seed() -> Scene {
-    prism::seed::scene().unwrap()
-}
-
 fn image(scene: Arc<PreparedScene>, camera: prism::camera::Camera, s: RenderSettings) -> Vec<u8> {
-    render::render(scene, camera, s, |_, _| {})
-        .accumulator()
-        .to_rgb8()
-        .into_raw()
+    render_prepared(scene, camera, s).into_raw()
 }
 
 /// `scene` prepared with every shortcut but those `off` turns off.

@@ -6,15 +6,16 @@
 //! The soft shadows of area lights are checked against POV-Ray's `area_light` too: prism's
 //! light colour is the whole light's, spread over its area, as POV-Ray's is.
 //!
-//! Needs `povray` (`.ci/run` installs it). Without it the test says so and passes, unless
-//! PRISM_REQUIRE_POVRAY is set, as it is in CI.
+//! Needs `povray` (`.ci/run` installs it). Without it the test fails, unless
+//! PRISM_SKIP_MISSING_TOOLS is set, when it says it skipped.
 
-use prism::render::{self, RenderSettings};
+mod common;
+
+use prism::render::RenderSettings;
 use prism::sampler::SampleLayout;
-use prism::scene::{PreparedScene, parse_scene};
+use prism::scene::parse_scene;
 use std::path::Path;
 use std::process::Command;
-use std::sync::Arc;
 
 const W: u32 = 320;
 const H: u32 = 240;
@@ -106,20 +107,10 @@ fn povray_scene() -> String {
     s
 }
 
-/// Whether POV-Ray can be run; without it a test passes, unless CI requires it.
+/// Whether POV-Ray can be run (common::tools_present: without it the test fails, unless
+/// skipping is asked for).
 fn povray_available() -> bool {
-    let available = Command::new("sh")
-        .args(["-c", "command -v povray"])
-        .output()
-        .is_ok_and(|o| o.status.success());
-    if !available {
-        assert!(
-            std::env::var_os("PRISM_REQUIRE_POVRAY").is_none(),
-            "the POV-Ray comparison needs povray: run .ci/run"
-        );
-        eprintln!("skipping the POV-Ray comparison: povray is not installed");
-    }
-    available
+    common::tools_present("the POV-Ray comparison", &["povray"])
 }
 
 /// POV-Ray's image of `scene` at `w` × `h`, one ray through each pixel's centre, linear.
@@ -155,14 +146,7 @@ fn prism_render(text: &str, w: u32, h: u32, samples: Option<u32>) -> image::RgbI
     let mut settings = RenderSettings::new(w, h, 1);
     settings.layout = SampleLayout::Grid;
     settings.samples = samples;
-    render::render(
-        Arc::new(PreparedScene::new(&scene)),
-        scene.camera,
-        settings,
-        |_, _| {},
-    )
-    .accumulator()
-    .to_rgb8()
+    common::render_scene(&scene, settings)
 }
 
 #[test]

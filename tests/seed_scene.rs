@@ -1,5 +1,8 @@
 //! The seed scene, rendered headless: the properties a person checks by eye, as numbers.
 
+mod common;
+
+use common::seed;
 use glam::Vec3;
 use prism::accel::Reach;
 use prism::camera::Camera;
@@ -8,10 +11,6 @@ use prism::integrator::Integrator;
 use prism::render::{self, RenderSettings};
 use prism::scene::{PreparedScene, Scene, ShapeDesc};
 use std::sync::Arc;
-
-fn seed() -> Scene {
-    prism::seed::scene().expect("the seed scene loads")
-}
 
 fn object_mut<'a>(scene: &'a mut Scene, name: &str) -> &'a mut prism::scene::SceneObject {
     scene.objects.iter_mut().find(|o| o.name == name).unwrap()

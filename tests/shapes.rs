@@ -2,13 +2,14 @@
 //! equation says, with the normal its gradient gives, placed directly and under transforms
 //! alike; and every degenerate or malformed entry refused with its line and field.
 
+mod common;
+
 use glam::{DVec3, Vec3};
 use prism::accel::Reach;
 use prism::geometry::{Ray, RayQuery};
-use prism::render::{self, RenderSettings};
+use prism::render::RenderSettings;
 use prism::scene::{PreparedScene, Scene, ShapeDesc, parse_scene};
 use std::path::Path;
-use std::sync::Arc;
 
 const CAMERA: &str = "[camera]\neye = [0, 3, 8]\nlook_at = [0, 0, 0]\nfov = 40\n\n\
                       [render]\nambient = [0.1, 0.1, 0.1]\n\n\
@@ -294,16 +295,7 @@ fn a_tori_scene_renders_the_same_at_every_scale() {
         "[[tori]]\ncenter = [0, 0, 0]\nmajor_radius = 2\nminor_radius = 0.6\nrotate = [35, 0, 10]\nmaterial = \"red\"\n\n\
          [[tori]]\ncenter = [0, 0, 0]\nmajor_radius = 0.8\nminor_radius = 0.1\ntranslate = [2.2, -1.4, 2.5]\nmaterial = \"red\"\n",
     );
-    let image = |scene: &Scene| {
-        render::render(
-            Arc::new(PreparedScene::new(scene)),
-            scene.camera,
-            RenderSettings::new(200, 150, 2),
-            |_, _| {},
-        )
-        .accumulator()
-        .to_rgb8()
-    };
+    let image = |scene: &Scene| common::render_scene(scene, RenderSettings::new(200, 150, 2));
     let reference = image(&s);
     let lit = reference.pixels().filter(|p| p[0] > 60).count();
     assert!(lit > 2000, "the tori are drawn ({lit} lit pixels)");

@@ -3,6 +3,9 @@
 //! these print are the ones in docs/numerics.md (`cargo test --release --test stress --
 //! --nocapture` shows them).
 
+mod common;
+
+use common::seed;
 use glam::{DVec3, Vec3};
 use prism::appearance::Material;
 use prism::geometry::{Cylinder, Ray, RayQuery, Sphere, Triangle};
@@ -13,10 +16,6 @@ use prism::scene::{PreparedScene, Scene, SceneObject, ShapeDesc, load_scene};
 use proptest::prelude::*;
 use std::path::Path;
 use std::sync::Arc;
-
-fn seed() -> Scene {
-    prism::seed::scene().unwrap()
-}
 
 const W: u32 = 240;
 const H: u32 = 180;

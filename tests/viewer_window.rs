@@ -8,20 +8,15 @@
 //! and tests/window/animation.sh stepping through an animation's frames.
 //!
 //! Needs xvfb-run, xdotool and ImageMagick (`.ci/run` installs them). Without them the test
-//! says so and passes, unless PRISM_REQUIRE_WINDOW_TEST is set, as it is in CI.
+//! fails, unless PRISM_SKIP_MISSING_TOOLS is set, when it says it skipped.
 
 #![cfg(feature = "viewer")]
+
+mod common;
 
 use prism::render::fraction_differing as differing;
 use std::path::{Path, PathBuf};
 use std::process::Command;
-
-fn have(tool: &str) -> bool {
-    Command::new("sh")
-        .args(["-c", &format!("command -v {tool}")])
-        .output()
-        .is_ok_and(|o| o.status.success())
-}
 
 fn shots(dir: &Path) -> Vec<PathBuf> {
     let mut v: Vec<PathBuf> = std::fs::read_dir(dir)
@@ -124,20 +119,10 @@ fn render_headless(work: &Path, args: &[&str]) -> image::RgbImage {
     image::open(&out).unwrap().into_rgb8()
 }
 
-/// Whether the window tools are here; without them the test is skipped, unless it is
-/// required.
+/// Whether the window tools are here (common::tools_present: without them the test
+/// fails, unless skipping is asked for).
 fn window_tools() -> bool {
-    let required = std::env::var_os("PRISM_REQUIRE_WINDOW_TEST").is_some();
-    let missing: Vec<&str> = ["xvfb-run", "xdotool", "import"]
-        .into_iter()
-        .filter(|t| !have(t))
-        .collect();
-    if !missing.is_empty() {
-        assert!(!required, "the window test needs {missing:?}: run .ci/run");
-        eprintln!("skipping the window test: {missing:?} not installed (see docs/testing.md)");
-        return false;
-    }
-    true
+    common::tools_present("the window test", &["xvfb-run", "xdotool", "import"])
 }
 
 #[test]
