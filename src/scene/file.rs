@@ -375,7 +375,9 @@ fn read_text_file(path: &Path, max: u64, what: &str) -> Result<String, SceneErro
     }
     let file = std::fs::File::open(path).map_err(|e| fail(io_message(&e)))?;
     // The file may grow between the check and the read: read no more than the limit.
-    let mut bytes = Vec::new();
+    // Its size, known, is reserved: read through `take`, which gives no size hint, the
+    // buffer would grow by doubling, copying and touching fresh pages each time.
+    let mut bytes = Vec::with_capacity(meta.len() as usize + 1);
     file.take(max + 1)
         .read_to_end(&mut bytes)
         .map_err(|e| fail(io_message(&e)))?;

@@ -68,8 +68,12 @@ pub fn parse_obj(text: &str, max_triangles: usize, smooth: bool) -> Result<ObjFi
     use rayon::prelude::*;
     let text = without_byte_order_mark(text);
     let chunks = cut_at_lines(text);
-    refuse_oversized_faces(&chunks, max_triangles)?;
-    let pieces: Vec<Piece> = chunks.into_par_iter().map(read_piece).collect();
+    let counts = refuse_oversized_faces(&chunks, max_triangles)?;
+    let pieces: Vec<Piece> = chunks
+        .into_par_iter()
+        .zip(counts)
+        .map(|(chunk, count)| read_piece(chunk, &count))
+        .collect();
     let mut positions: Vec<Vec3> =
         Vec::with_capacity(pieces.iter().map(|p| p.positions.len()).sum());
     let mut uvs: Vec<Vec2> = Vec::new();
@@ -244,7 +248,10 @@ fn count_faces(text: &str, budget: usize) -> FaceCount {
 /// Refuses, before any table is built, a file whose faces make more than `max_triangles`
 /// triangles or one with more than `MAX_FACE_CORNERS` corners (its fan of triangles all
 /// meet at one corner, where a ray would test every one).
-fn refuse_oversized_faces(chunks: &[&str], max_triangles: usize) -> Result<(), LineError> {
+fn refuse_oversized_faces(
+    chunks: &[&str],
+    max_triangles: usize,
+) -> Result<Vec<FaceCount>, LineError> {
     use rayon::prelude::*;
     let counts: Vec<FaceCount> = chunks
         .par_iter()
@@ -274,7 +281,7 @@ fn refuse_oversized_faces(chunks: &[&str], max_triangles: usize) -> Result<(), L
         triangles += count.triangles;
         lines_before += count.lines;
     }
-    Ok(())
+    Ok(counts)
 }
 
 /// A face corner as written: vertex, texture coordinate and normal indices (1-based, or
@@ -315,14 +322,18 @@ struct Piece<'a> {
     lines: usize,
 }
 
-/// Reads one piece: its numbers, its faces' corners as written, and its other statements.
-fn read_piece(text: &str) -> Piece<'_> {
+/// Reads one piece, whose faces `count` counted: its numbers, its faces' corners as
+/// written, and its other statements. The lists are sized from the count (a face of n
+/// corners makes n − 2 triangles, so its corners are at most three per triangle, and a line
+/// that is not a face may be a vertex): grown by doubling, they were copied and their fresh
+/// pages touched again and again.
+fn read_piece<'a>(text: &'a str, count: &FaceCount) -> Piece<'a> {
     let mut piece = Piece {
-        positions: Vec::new(),
+        positions: Vec::with_capacity(count.lines.saturating_sub(count.triangles.min(count.lines))),
         uvs: Vec::new(),
         normals: Vec::new(),
-        corners: Vec::new(),
-        statements: Vec::new(),
+        corners: Vec::with_capacity(3 * count.triangles),
+        statements: Vec::with_capacity(count.triangles),
         error: None,
         lines: text.bytes().filter(|&b| b == b'\n').count(),
     };
