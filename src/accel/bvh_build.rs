@@ -30,8 +30,8 @@ const BINS: usize = 12;
 /// Cost of a box test relative to a primitive test, for the SAH.
 const TRAVERSAL_COST: f32 = 1.0;
 
-/// How a leaf's primitives are tested, for the SAH: `group` at a time (four triangles in
-/// SIMD lanes cost about what one does), and at most `max` in one leaf.
+/// How a leaf's primitives are tested, for the SAH: `group` at a time, each group counted
+/// as one test (a mesh's four triangles in SIMD lanes), and at most `max` in one leaf.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct LeafCost {
     pub group: usize,

@@ -375,8 +375,8 @@ fn read_text_file(path: &Path, max: u64, what: &str) -> Result<String, SceneErro
     }
     let file = std::fs::File::open(path).map_err(|e| fail(io_message(&e)))?;
     // The file may grow between the check and the read: read no more than the limit.
-    // Its size, known, is reserved: read through `take`, which gives no size hint, the
-    // buffer would grow by doubling, copying and touching fresh pages each time.
+    // Its size is reserved: `take` gives no size hint, so the buffer would otherwise grow
+    // by doubling, copying and touching fresh pages each time.
     let mut bytes = Vec::with_capacity(meta.len() as usize + 1);
     file.take(max + 1)
         .read_to_end(&mut bytes)

@@ -325,8 +325,8 @@ struct Piece<'a> {
 /// Reads one piece, whose faces `count` counted: its numbers, its faces' corners as
 /// written, and its other statements. The lists are sized from the count (a face of n
 /// corners makes n − 2 triangles, so its corners are at most three per triangle, and a line
-/// that is not a face may be a vertex): grown by doubling, they were copied and their fresh
-/// pages touched again and again.
+/// that is not a face may be a vertex): grown by doubling instead, they would be copied and
+/// their fresh pages touched again and again.
 fn read_piece<'a>(text: &'a str, count: &FaceCount) -> Piece<'a> {
     let mut piece = Piece {
         positions: Vec::with_capacity(count.lines.saturating_sub(count.triangles.min(count.lines))),
