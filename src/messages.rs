@@ -150,6 +150,42 @@ pub fn number(v: f32) -> String {
     plain_or_exponent(v, v.abs() as f64)
 }
 
+/// Why number `v` of `field` is refused: not finite, or outside `range`; None when it is
+/// taken. The one wording for every range a scene file or an edit checks.
+pub fn outside_range(field: &str, v: f32, range: &std::ops::RangeInclusive<f32>) -> Option<String> {
+    if !v.is_finite() {
+        Some(format!(
+            "`{field}` must be a finite number, got {}",
+            number(v)
+        ))
+    } else if !range.contains(&v) {
+        Some(format!(
+            "`{field}` must lie in [{}, {}], got {}",
+            number(*range.start()),
+            number(*range.end()),
+            number(v)
+        ))
+    } else {
+        None
+    }
+}
+
+/// Why colour `c` of `field` is refused: not finite, negative, or above `hi` in a channel
+/// (`why` says why `hi` is the bound); None when it is taken.
+pub fn outside_color_range(field: &str, c: [f32; 3], hi: f32, why: &str) -> Option<String> {
+    if !c.iter().all(|v| v.is_finite()) {
+        Some(format!("`{field}` must hold finite numbers, got {c:?}"))
+    } else if c.iter().any(|&v| v < 0.0) {
+        Some(format!("`{field}` must not be negative, got {c:?}"))
+    } else if c.iter().any(|&v| v > hi) {
+        Some(format!(
+            "`{field}` must lie in [0, {hi}] per channel ({why}), got {c:?}"
+        ))
+    } else {
+        None
+    }
+}
+
 /// [`number`] for a number read as f64 (a frame, a rate).
 pub fn number64(v: f64) -> String {
     plain_or_exponent(v, v.abs())

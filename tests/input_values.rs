@@ -259,6 +259,19 @@ fn scene_messages_point_at_what_is_wrong() {
         &["[animation]", "did you mean \"track\""],
     );
 
+    // A colour is quoted as the file wrote it, at the line of its field.
+    refused(
+        "[materials.m]\ncolor = [1.5, 0.5, 0.5]\n\n[[spheres]]\ncenter = [0, 0, -5]\n\
+         radius = 1\nmaterial = \"m\"\n",
+        &[
+            "scene.toml:7: materials.m: `color` must lie in [0, 1] per channel",
+            "got [1.5, 0.5, 0.5]",
+        ],
+    );
+    let e = parse("[materials.m]\nemission = [-1, 0, 0]\n[[spheres]]\ncenter = [0, 0, -5]\nradius = 1\nmaterial = \"m\"\n")
+        .unwrap_err();
+    assert!(!e.contains("Fixed"), "{e}");
+
     let (_d, dir) = dir_with(&[("far.obj", "v 3e38 0 0\nv 0 3e38 0\nv 0 0 3e38\nf 1 2 3\n")]);
     let e = parse_in("[[meshes]]\npath = \"far.obj\"\n", &dir).unwrap_err();
     assert!(

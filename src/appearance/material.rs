@@ -1,7 +1,10 @@
 //! Phong surface terms and the directions of mirror reflection and refraction.
 
 use super::texture::Texture;
+use crate::limits;
+use crate::messages::{outside_color_range, outside_range};
 use glam::{Vec3, Vec3A};
+use std::ops::RangeInclusive;
 
 /// A Whitted material, as in the seed: Phong local shading, plus a mirror term and a
 /// transmitted term that may bend by Snell's law.
@@ -67,7 +70,121 @@ impl Default for Material {
     }
 }
 
+/// A material field that breaks a rule, and what is wrong: the message names the field, in
+/// the words the scene file's messages use.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("{message}")]
+pub struct MaterialProblem {
+    /// The field at fault, as the scene file spells it.
+    pub field: &'static str,
+    /// What is wrong with it.
+    pub message: String,
+}
+
+impl MaterialProblem {
+    fn new(field: &'static str, message: impl Into<String>) -> Self {
+        Self {
+            field,
+            message: message.into(),
+        }
+    }
+}
+
+/// A number of `field` within `range`.
+fn within(field: &'static str, v: f32, range: RangeInclusive<f32>) -> Result<(), MaterialProblem> {
+    match outside_range(field, v, &range) {
+        Some(message) => Err(MaterialProblem::new(field, message)),
+        None => Ok(()),
+    }
+}
+
+/// A colour of `field` whose channels lie in [0, hi]; `why` says why hi is the bound.
+fn color_up_to(field: &'static str, c: Vec3, hi: f32, why: &str) -> Result<(), MaterialProblem> {
+    match outside_color_range(field, c.to_array(), hi, why) {
+        Some(message) => Err(MaterialProblem::new(field, message)),
+        None => Ok(()),
+    }
+}
+
+/// Why a surface's colours stop at 1.
+pub const REFLECTANCE_BOUND: &str = "a surface reflects at most all the light";
+
+/// Why light's colours may pass 1.
+pub const RADIANCE_BOUND: &str = "light may be brighter than white, up to this";
+
 impl Material {
+    /// Checks the rules every material follows, whether a scene file or an edit made it:
+    /// each number within its limit (limits.rs), and the rules between fields (`fresnel`
+    /// needs an `eta` other than 1, `roughness` a mirror, `absorption` transparency, a
+    /// `conductor` a mirror that is not Fresnel glass). The first problem is returned, in
+    /// the order of the file's fields.
+    pub fn check(&self) -> Result<(), MaterialProblem> {
+        let reflectance = *limits::REFLECTANCE.end();
+        if let Texture::Solid(c) = self.texture {
+            color_up_to("color", c, reflectance, REFLECTANCE_BOUND)?;
+        }
+        if let Some(eta) = self.eta {
+            within("eta", eta, limits::ETA)?;
+        }
+        if self.fresnel && !matches!(self.eta, Some(e) if e != 1.0) {
+            return Err(MaterialProblem::new(
+                "fresnel",
+                "`fresnel = true` needs a refractive material: an `eta` other than 1",
+            ));
+        }
+        within("roughness", self.roughness, limits::ROUGHNESS)?;
+        within("transparency", self.transparency, limits::FRACTION)?;
+        within("reflectivity", self.reflectivity, limits::FRACTION)?;
+        if self.roughness > 0.0 && self.reflectivity == 0.0 && !self.fresnel {
+            return Err(MaterialProblem::new(
+                "roughness",
+                "`roughness` spreads mirror reflection: it needs a `reflectivity` above 0 \
+                 (or `fresnel = true`)",
+            ));
+        }
+        if self.absorption != Vec3::ZERO {
+            if self.transparency == 0.0 {
+                return Err(MaterialProblem::new(
+                    "absorption",
+                    "`absorption` tints light travelling inside: it needs a `transparency` \
+                     above 0",
+                ));
+            }
+            color_up_to(
+                "absorption",
+                self.absorption,
+                limits::MAX_EXTINCTION,
+                "per scene unit",
+            )?;
+        }
+        if let Some(c) = self.conductor {
+            if self.reflectivity == 0.0 {
+                return Err(MaterialProblem::new(
+                    "conductor",
+                    "`conductor` tints mirror reflection: it needs a `reflectivity` above 0",
+                ));
+            }
+            if self.fresnel {
+                return Err(MaterialProblem::new(
+                    "conductor",
+                    "a material is either a `conductor` (a metal) or `fresnel` glass, not both",
+                ));
+            }
+            color_up_to("conductor", c, reflectance, REFLECTANCE_BOUND)?;
+        }
+        let phong = 0.0..=limits::MAX_PHONG_FACTOR;
+        within("ambient", self.ambient, phong.clone())?;
+        within("diffuse", self.diffuse, phong.clone())?;
+        within("specular", self.specular, phong)?;
+        within("shininess", self.shininess, 0.0..=limits::MAX_SHININESS)?;
+        color_up_to(
+            "emission",
+            self.emission,
+            limits::MAX_RADIANCE,
+            RADIANCE_BOUND,
+        )
+    }
+
     /// How much of the light crossing this surface once goes on, tinted by its colour:
     /// the clearer the surface, the less tint (a 90% clear green glass casts a pale green
     /// shadow).
@@ -130,6 +247,189 @@ pub fn refract(d: Vec3A, n: Vec3A, eta_ratio: f32) -> Option<Vec3A> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Each rule of `Material::check`, at its limit and just past it, and the rules between
+    /// fields: the field named is the one at fault.
+    #[test]
+    fn check_holds_each_rule_at_its_limit() {
+        let d = Material::default();
+        assert_eq!(d.check(), Ok(()));
+        let accepted = [
+            Material {
+                ambient: 1000.0,
+                shininess: 10000.0,
+                emission: Vec3::splat(1.0e4),
+                ..d.clone()
+            },
+            Material {
+                roughness: 1.0,
+                reflectivity: 1.0,
+                conductor: Some(Vec3::ONE),
+                ..d.clone()
+            },
+            Material {
+                transparency: 1.0,
+                eta: Some(10.0),
+                fresnel: true,
+                roughness: 0.5,
+                absorption: Vec3::splat(1.0e12),
+                ..d.clone()
+            },
+        ];
+        for m in accepted {
+            assert_eq!(m.check(), Ok(()), "{m:?}");
+        }
+        let refused = [
+            (
+                "color",
+                Material {
+                    texture: Texture::Solid(Vec3::new(1.01, 0.0, 0.0)),
+                    ..d.clone()
+                },
+            ),
+            (
+                "ambient",
+                Material {
+                    ambient: 1000.5,
+                    ..d.clone()
+                },
+            ),
+            (
+                "diffuse",
+                Material {
+                    diffuse: -0.01,
+                    ..d.clone()
+                },
+            ),
+            (
+                "specular",
+                Material {
+                    specular: f32::INFINITY,
+                    ..d.clone()
+                },
+            ),
+            (
+                "shininess",
+                Material {
+                    shininess: 10001.0,
+                    ..d.clone()
+                },
+            ),
+            (
+                "reflectivity",
+                Material {
+                    reflectivity: 1.01,
+                    ..d.clone()
+                },
+            ),
+            (
+                "transparency",
+                Material {
+                    transparency: -0.01,
+                    ..d.clone()
+                },
+            ),
+            (
+                "eta",
+                Material {
+                    eta: Some(10.5),
+                    ..d.clone()
+                },
+            ),
+            (
+                "eta",
+                Material {
+                    eta: Some(f32::NAN),
+                    ..d.clone()
+                },
+            ),
+            (
+                "emission",
+                Material {
+                    emission: Vec3::new(0.0, 1.0e5, 0.0),
+                    ..d.clone()
+                },
+            ),
+            (
+                "roughness",
+                Material {
+                    roughness: 0.5,
+                    ..d.clone()
+                },
+            ),
+            (
+                "roughness",
+                Material {
+                    roughness: 1.5,
+                    reflectivity: 1.0,
+                    ..d.clone()
+                },
+            ),
+            (
+                "fresnel",
+                Material {
+                    fresnel: true,
+                    ..d.clone()
+                },
+            ),
+            (
+                "fresnel",
+                Material {
+                    fresnel: true,
+                    eta: Some(1.0),
+                    ..d.clone()
+                },
+            ),
+            (
+                "absorption",
+                Material {
+                    absorption: Vec3::X,
+                    ..d.clone()
+                },
+            ),
+            (
+                "absorption",
+                Material {
+                    absorption: Vec3::NAN,
+                    transparency: 0.5,
+                    ..d.clone()
+                },
+            ),
+            (
+                "conductor",
+                Material {
+                    conductor: Some(Vec3::ONE),
+                    ..d.clone()
+                },
+            ),
+            (
+                "conductor",
+                Material {
+                    conductor: Some(Vec3::ONE),
+                    reflectivity: 1.0,
+                    fresnel: true,
+                    eta: Some(1.5),
+                    ..d.clone()
+                },
+            ),
+            (
+                "conductor",
+                Material {
+                    conductor: Some(Vec3::splat(2.0)),
+                    reflectivity: 1.0,
+                    ..d.clone()
+                },
+            ),
+        ];
+        for (field, m) in refused {
+            let problem = m.check().unwrap_err();
+            assert_eq!(problem.field, field, "{m:?}");
+            assert!(
+                problem.message.contains(&format!("`{field}")),
+                "{problem:?}"
+            );
+        }
+    }
 
     fn dir_at(angle_deg: f32) -> Vec3A {
         // Travelling down onto the plane y = 0 at `angle` from the normal, in the xy plane.

@@ -13,12 +13,12 @@ mod solids;
 use super::description::{RenderDefaults, Scene, SceneObject, ShapeDesc};
 use super::error::{SceneError, line_column};
 use super::spans::FieldSpans;
-use crate::appearance::Material;
 use crate::appearance::{AreaShape, Background, Falloff, Fog, FogKind, Light, LightKind, SpotCone};
 use crate::appearance::{ImageTexture, Texture, TextureError, UvTransform};
+use crate::appearance::{Material, RADIANCE_BOUND, REFLECTANCE_BOUND};
 use crate::camera::Camera;
 use crate::limits;
-use crate::messages::{did_you_mean, number, quoted};
+use crate::messages::{did_you_mean, number, outside_color_range, outside_range, quoted};
 use entry::entry_label;
 use entry_def::EntryDef;
 use fixed_array::Fixed;
@@ -676,15 +676,7 @@ impl Validator<'_> {
     }
 
     fn number(&self, at: &Item, field: &str, v: f32) -> Result<f32, SceneError> {
-        if v.is_finite() {
-            Ok(v)
-        } else {
-            Err(self.field_error(
-                at,
-                field,
-                format!("`{field}` must be a finite number, got {}", number(v)),
-            ))
-        }
+        self.in_range(at, field, v, f32::NEG_INFINITY, f32::INFINITY)
     }
 
     /// A radius, height or pattern size: positive, and within the lengths the tracer's
@@ -715,20 +707,9 @@ impl Validator<'_> {
         lo: f32,
         hi: f32,
     ) -> Result<f32, SceneError> {
-        let v = self.number(at, field, v)?;
-        if (lo..=hi).contains(&v) {
-            Ok(v)
-        } else {
-            Err(self.field_error(
-                at,
-                field,
-                format!(
-                    "`{field}` must lie in [{}, {}], got {}",
-                    number(lo),
-                    number(hi),
-                    number(v)
-                ),
-            ))
+        match outside_range(field, v, &(lo..=hi)) {
+            Some(message) => Err(self.field_error(at, field, message)),
+            None => Ok(v),
         }
     }
 
@@ -762,49 +743,30 @@ impl Validator<'_> {
         }
     }
 
-    /// A colour whose channels lie in [0, hi]; `what` says why hi is the bound.
+    /// A colour whose channels lie in [0, hi]; `why` says why hi is the bound.
     fn color_up_to(
         &self,
         at: &Item,
         field: &str,
         v: V3,
         hi: f32,
-        what: &str,
+        why: &str,
     ) -> Result<Vec3, SceneError> {
-        let c = self.point(at, field, v)?;
-        if c.min_element() < 0.0 {
-            return Err(self.field_error(
-                at,
-                field,
-                format!("`{field}` must not be negative, got {v:?}"),
-            ));
+        match outside_color_range(field, v.0, hi, why) {
+            Some(message) => Err(self.field_error(at, field, message)),
+            None => Ok(Vec3::from(v)),
         }
-        if c.max_element() > hi {
-            return Err(self.field_error(
-                at,
-                field,
-                format!("`{field}` must lie in [0, {hi}] per channel ({what}), got {v:?}"),
-            ));
-        }
-        Ok(c)
     }
 
     /// A surface's colour: the fraction of light it reflects, per channel.
     fn reflectance(&self, at: &Item, field: &str, v: V3) -> Result<Vec3, SceneError> {
         let hi = *limits::REFLECTANCE.end();
-        self.color_up_to(at, field, v, hi, "a surface reflects at most all the light")
+        self.color_up_to(at, field, v, hi, REFLECTANCE_BOUND)
     }
 
     /// A light's colour, the background, the ambient light: brighter than white is allowed.
     fn radiance(&self, at: &Item, field: &str, v: V3) -> Result<Vec3, SceneError> {
-        let hi = limits::MAX_RADIANCE;
-        self.color_up_to(
-            at,
-            field,
-            v,
-            hi,
-            "light may be brighter than white, up to this",
-        )
+        self.color_up_to(at, field, v, limits::MAX_RADIANCE, RADIANCE_BOUND)
     }
 
     fn count(&self, at: &Item, field: &str, v: i64, lo: i64, hi: i64) -> Result<u32, SceneError> {
@@ -1834,111 +1796,28 @@ impl Validator<'_> {
                     format!("no texture named {}{hint}", quoted(t)),
                 )
             })?,
-            (None, Some(c)) => Texture::Solid(self.reflectance(&at, "color", c)?),
+            (None, Some(c)) => Texture::Solid(c.into()),
             (None, None) => d.texture.clone(),
         };
-        let factor = |field: &str, v: Option<f32>, default: f32| {
-            self.in_range(
-                &at,
-                field,
-                v.unwrap_or(default),
-                0.0,
-                limits::MAX_PHONG_FACTOR,
-            )
-        };
-        let (lo, hi) = (*limits::FRACTION.start(), *limits::FRACTION.end());
-        let fraction =
-            |field: &str, v: Option<f32>| self.in_range(&at, field, v.unwrap_or(0.0), lo, hi);
-        let eta = match m.eta {
-            None => None,
-            Some(e) => {
-                Some(self.in_range(&at, "eta", e, *limits::ETA.start(), *limits::ETA.end())?)
-            }
-        };
-        let fresnel = m.fresnel.unwrap_or(false);
-        if fresnel && !matches!(eta, Some(e) if e != 1.0) {
-            return Err(self.field_error(
-                &at,
-                "fresnel",
-                "`fresnel = true` needs a refractive material: an `eta` other than 1",
-            ));
-        }
-        let (lo, hi) = (*limits::ROUGHNESS.start(), *limits::ROUGHNESS.end());
-        let roughness = self.in_range(&at, "roughness", m.roughness.unwrap_or(0.0), lo, hi)?;
-        let transparency = fraction("transparency", m.transparency)?;
-        let reflectivity = fraction("reflectivity", m.reflectivity)?;
-        if roughness > 0.0 && reflectivity == 0.0 && !fresnel {
-            return Err(self.field_error(
-                &at,
-                "roughness",
-                "`roughness` spreads mirror reflection: it needs a `reflectivity` above 0 \
-                 (or `fresnel = true`)",
-            ));
-        }
-        let absorption = match m.absorption {
-            None => Vec3::ZERO,
-            Some(a) => {
-                if transparency == 0.0 {
-                    return Err(self.field_error(
-                        &at,
-                        "absorption",
-                        "`absorption` tints light travelling inside: it needs a \
-                         `transparency` above 0",
-                    ));
-                }
-                self.color_up_to(
-                    &at,
-                    "absorption",
-                    a,
-                    limits::MAX_EXTINCTION,
-                    "per scene unit",
-                )?
-            }
-        };
-        let conductor = match m.conductor {
-            None => None,
-            Some(c) => {
-                if reflectivity == 0.0 {
-                    return Err(self.field_error(
-                        &at,
-                        "conductor",
-                        "`conductor` tints mirror reflection: it needs a `reflectivity` above 0",
-                    ));
-                }
-                if fresnel {
-                    return Err(self.field_error(
-                        &at,
-                        "conductor",
-                        "a material is either a `conductor` (a metal) or `fresnel` glass, not both",
-                    ));
-                }
-                Some(self.reflectance(&at, "conductor", c)?)
-            }
-        };
-        Ok(Material {
+        let material = Material {
             texture,
-            ambient: factor("ambient", m.ambient, d.ambient)?,
-            diffuse: factor("diffuse", m.diffuse, d.diffuse)?,
-            specular: factor("specular", m.specular, d.specular)?,
-            shininess: self.in_range(
-                &at,
-                "shininess",
-                m.shininess.unwrap_or(d.shininess),
-                0.0,
-                limits::MAX_SHININESS,
-            )?,
-            reflectivity,
-            transparency,
-            eta,
-            emission: match m.emission {
-                Some(e) => self.radiance(&at, "emission", e)?,
-                None => d.emission,
-            },
-            fresnel,
-            roughness,
-            absorption,
-            conductor,
-        })
+            ambient: m.ambient.unwrap_or(d.ambient),
+            diffuse: m.diffuse.unwrap_or(d.diffuse),
+            specular: m.specular.unwrap_or(d.specular),
+            shininess: m.shininess.unwrap_or(d.shininess),
+            reflectivity: m.reflectivity.unwrap_or(d.reflectivity),
+            transparency: m.transparency.unwrap_or(d.transparency),
+            eta: m.eta,
+            emission: m.emission.map_or(d.emission, Vec3::from),
+            fresnel: m.fresnel.unwrap_or(d.fresnel),
+            roughness: m.roughness.unwrap_or(d.roughness),
+            absorption: m.absorption.map_or(d.absorption, Vec3::from),
+            conductor: m.conductor.map(Vec3::from),
+        };
+        material
+            .check()
+            .map_err(|p| self.field_error(&at, p.field, p.message))?;
+        Ok(material)
     }
 
     /// The `[fog]` table: exponential with `density`, or linear from `start` to `end`.

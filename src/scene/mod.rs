@@ -20,7 +20,7 @@ mod spans;
 pub use animation::{Animation, Interpolation, Key, OBJECT_TABLES, SceneFrames, Track};
 pub use camera_table::camera_table;
 pub use description::{ObjectPlacement, RenderDefaults, Scene, SceneObject, ShapeDesc};
-pub use edit::{EditError, MaterialProblem, check_camera, check_material};
+pub use edit::{EditError, check_camera};
 pub use error::SceneError;
 pub use file::{
     Assets, LoadedScene, ObjectOrigin, ReadCache, SceneLoad, load_scene, load_scene_file,

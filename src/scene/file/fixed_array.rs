@@ -8,8 +8,15 @@ use std::marker::PhantomData;
 use std::ops::{Deref, DerefMut};
 
 /// Exactly N values of T.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, PartialEq)]
 pub struct Fixed<T, const N: usize>(pub [T; N]);
+
+/// Shown as the list the file wrote (messages quote it), not as a wrapper.
+impl<T: std::fmt::Debug, const N: usize> std::fmt::Debug for Fixed<T, N> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        self.0.fmt(f)
+    }
+}
 
 impl<T, const N: usize> Deref for Fixed<T, N> {
     type Target = [T; N];
