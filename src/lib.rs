@@ -18,5 +18,6 @@ pub mod numerics;
 pub mod render;
 pub mod sampler;
 pub mod scene;
+pub mod scene_file;
 pub mod seed;
 mod simd;

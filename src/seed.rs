@@ -1,8 +1,8 @@
 //! The seed scene, built into the library with its texture, so that an installed prism
 //! opens it from any folder without the source tree.
 
-use crate::scene::{Assets, LoadedScene, parse_loaded, parse_scene_with};
-use crate::scene::{Scene, SceneError};
+use crate::scene::Scene;
+use crate::scene_file::{Assets, LoadedScene, SceneError, parse_loaded, parse_scene_with};
 use std::path::Path;
 
 /// The seed scene's file, as shipped in assets/scenes/seed.toml.
@@ -31,7 +31,7 @@ mod tests {
     #[test]
     fn the_built_in_seed_is_the_shipped_file() {
         let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes");
-        let shipped = crate::scene::load_scene(&dir.join("seed.toml")).unwrap();
+        let shipped = crate::scene_file::load_scene(&dir.join("seed.toml")).unwrap();
         assert_eq!(scene().unwrap(), shipped);
     }
 }

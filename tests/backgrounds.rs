@@ -8,10 +8,15 @@ use prism::accel::Reach;
 use prism::geometry::Ray;
 use prism::integrator::Integrator;
 use prism::render::RenderSettings;
-use prism::scene::{PreparedScene, Scene, parse_scene};
+use prism::scene::{PreparedScene, Scene};
+use prism::scene_file::parse_scene;
 use std::path::Path;
 
-fn scene_in(dir: &Path, render: &str, objects: &str) -> Result<Scene, prism::scene::SceneError> {
+fn scene_in(
+    dir: &Path,
+    render: &str,
+    objects: &str,
+) -> Result<Scene, prism::scene_file::SceneError> {
     let text = format!(
         "[camera]\neye = [0, 0, 0]\nfov = 60\n\n[render]\nambient = [0, 0, 0]\n{render}\n{objects}"
     );

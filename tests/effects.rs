@@ -12,7 +12,8 @@ use prism::geometry::Ray;
 use prism::integrator::Integrator;
 use prism::render::{RenderSettings, fraction_differing};
 use prism::sampler::SampleStream;
-use prism::scene::{PreparedScene, Scene, parse_scene};
+use prism::scene::{PreparedScene, Scene};
+use prism::scene_file::parse_scene;
 use std::path::Path;
 
 fn load(text: &str) -> Scene {

@@ -6,7 +6,8 @@ mod common;
 
 use prism::render::RenderSettings;
 use prism::sampler::SampleLayout;
-use prism::scene::{Scene, parse_scene};
+use prism::scene::Scene;
+use prism::scene_file::parse_scene;
 use std::path::Path;
 
 /// A white sky over a sheet of glass (eta 1.5, all of its light split by Fresnel), over a

@@ -718,7 +718,8 @@ fn mirror_chain() -> String {
 fn the_longest_ray_chain_spends_the_budget_within_a_small_stack() {
     use prism::geometry::Ray;
     use prism::integrator::Integrator;
-    use prism::scene::{PreparedScene, parse_scene};
+    use prism::scene::PreparedScene;
+    use prism::scene_file::parse_scene;
     let scene = parse_scene(&mirror_chain(), Path::new("chain.toml"), Path::new(".")).unwrap();
     let prepared = PreparedScene::new(&scene);
     // Renders run on prism::render::thread_pool's threads; the deepest sample fits in half
@@ -750,7 +751,7 @@ fn the_longest_ray_chain_spends_the_budget_within_a_small_stack() {
 fn every_field_error_points_at_the_fields_own_line() {
     // Each scene has one bad value; the error names the line that holds it (marked `# <-`),
     // not its table's header. Spans come from the parsed file, not from searching its text.
-    use prism::scene::parse_scene;
+    use prism::scene_file::parse_scene;
     let cases = [
         "[camera]\neye = [0, 0, 0]\nfov = 40\n\n[[spheres]]\nname = \"a\"\ncenter = [0, 0, -5]\n\
          radius = -1 # <-\n",

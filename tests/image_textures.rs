@@ -5,7 +5,8 @@ use glam::Vec3;
 use prism::accel::Reach;
 use prism::geometry::Ray;
 use prism::integrator::Integrator;
-use prism::scene::{PreparedScene, Scene, parse_scene};
+use prism::scene::{PreparedScene, Scene};
+use prism::scene_file::parse_scene;
 use std::path::Path;
 
 /// A 16×16 picture in quadrants: red top-left, green top-right, blue bottom-left, white

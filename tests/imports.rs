@@ -1,13 +1,9 @@
-//! No import circle between the files of src/: read from their `use` lines (their tests
-//! left out), file A imports file B when A names B's module or something declared in it,
-//! and no chain of imports leads from a file back to itself. A circle is what makes a file
-//! impossible to read, test or move without the other; what two files both need belongs in
-//! a file below them.
-//!
-//! One family is still allowed, as known debt: the scene file's submodules (entries,
-//! placement, solids, meshes) use the validator that `scene/file.rs` defines, while
-//! `file.rs` calls them. Splitting the validator by subject (issue 32) removes it; the
-//! allowance names those edges only, so any new circle fails.
+//! No import circle between the files of src/: read from their `use` lines and the paths
+//! they name in code (`super::load::read(…)`, `crate::scene::Scene`), their tests left out,
+//! file A imports file B when A names B's module or something declared in it, and no chain
+//! of imports leads from a file back to itself. A circle is what makes a file impossible to
+//! read, test or move without the other; what two files both need belongs in a file below
+//! them.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
@@ -113,6 +109,41 @@ fn uses(code: &str) -> Vec<(Vec<String>, Vec<String>)> {
         }
         out.push((path, names));
     }
+    out.extend(inline_paths(code));
+    out
+}
+
+/// The paths from `crate` or `super` that code names outside `use` lines and comments
+/// (`super::assets::read_text_file(…)`), each with no list.
+fn inline_paths(code: &str) -> Vec<(Vec<String>, Vec<String>)> {
+    let mut out = Vec::new();
+    for line in code.lines() {
+        let line = line.trim_start();
+        if line.starts_with("//") || line.starts_with("use ") || line.starts_with("pub use ") {
+            continue;
+        }
+        for root in ["crate::", "super::"] {
+            let mut from = 0;
+            while let Some(found) = line[from..].find(root) {
+                let start = from + found;
+                from = start + root.len();
+                let before = line[..start].chars().next_back();
+                if before.is_some_and(|c| c.is_alphanumeric() || c == '_' || c == ':') {
+                    continue;
+                }
+                let path: String = line[start..]
+                    .chars()
+                    .take_while(|c| c.is_alphanumeric() || *c == '_' || *c == ':')
+                    .collect();
+                let segments: Vec<String> = path
+                    .split("::")
+                    .filter(|s| !s.is_empty())
+                    .map(String::from)
+                    .collect();
+                out.push((segments, Vec::new()));
+            }
+        }
+    }
     out
 }
 
@@ -168,12 +199,6 @@ fn imports(sources: &BTreeMap<Module, String>) -> BTreeMap<Module, BTreeSet<Modu
     graph
 }
 
-/// The known debt: a file under scene/file/ using scene/file.rs.
-fn allowed(from: &Module, to: &Module) -> bool {
-    let file: Module = vec!["scene".into(), "file".into()];
-    *to == file && from.len() == 3 && from[..2] == file[..]
-}
-
 /// Every circle: the strongly connected components of more than one file (Tarjan).
 fn circles(graph: &BTreeMap<Module, BTreeSet<Module>>) -> Vec<Vec<Module>> {
     struct State<'g> {
@@ -189,9 +214,6 @@ fn circles(graph: &BTreeMap<Module, BTreeSet<Module>>) -> Vec<Vec<Module>> {
         s.low.insert(v, n);
         s.stack.push(v);
         for w in &s.graph[v] {
-            if allowed(v, w) {
-                continue;
-            }
             if !s.index.contains_key(w) {
                 visit(s, w);
                 let low = s.low[v].min(s.low[w]);
@@ -253,7 +275,7 @@ fn no_file_of_src_imports_itself_through_others() {
     assert!(found.is_empty(), "import circles: {shown:#?}");
 }
 
-/// The reader finds a circle where there is one, and the allowance covers only its edges.
+/// The reader finds a circle where there is one, and paths named in code.
 #[test]
 fn a_circle_is_found() {
     let m = |s: &str| -> Module { s.split('/').map(String::from).collect() };
@@ -270,7 +292,13 @@ fn a_circle_is_found() {
         found[0].iter().cloned().collect::<BTreeSet<_>>(),
         BTreeSet::from([m("a"), m("b")])
     );
-    assert!(allowed(&m("scene/file/entry"), &m("scene/file")));
-    assert!(!allowed(&m("scene/file"), &m("scene/file/entry")));
-    assert!(!allowed(&m("scene/edit"), &m("scene/file")));
+    // A path named in code counts as a `use` does; one in a comment does not.
+    sources.insert(
+        m("d"),
+        "// crate::a::x\nfn f() { crate::a::x(); }\n".to_string(),
+    );
+    let graph = imports(&sources);
+    assert!(graph[&m("d")].contains(&m("a")));
+    sources.insert(m("d"), "// crate::a::x\n".to_string());
+    assert!(!imports(&sources)[&m("d")].contains(&m("a")));
 }

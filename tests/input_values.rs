@@ -13,7 +13,7 @@ fn parse(text: &str) -> Result<prism::scene::Scene, String> {
 
 fn parse_in(text: &str, dir: &Path) -> Result<prism::scene::Scene, String> {
     let source = format!("{CAMERA}{text}");
-    prism::scene::parse_scene(&source, &dir.join("scene.toml"), dir).map_err(|e| e.to_string())
+    prism::scene_file::parse_scene(&source, &dir.join("scene.toml"), dir).map_err(|e| e.to_string())
 }
 
 fn refused(text: &str, needles: &[&str]) {
@@ -105,7 +105,7 @@ fn the_documented_minimum_length_is_accepted() {
     parse("[[tori]]\ncenter = [0, 0, -5]\nmajor_radius = 1\nminor_radius = 1e-12\n").unwrap();
     let source = "[camera]\neye = [0, 0, 0]\ndirection = [0, 0, -1]\nfov = 40\naperture = 0.1\n\
                   focus_distance = 1e-12\n";
-    prism::scene::parse_scene(source, Path::new("s.toml"), Path::new(".")).unwrap();
+    prism::scene_file::parse_scene(source, Path::new("s.toml"), Path::new(".")).unwrap();
     refused(
         "[[spheres]]\ncenter = [0, 0, -5]\nradius = 9e-13\n",
         &["at least 1e-12", "got 9e-13"],
@@ -220,7 +220,7 @@ fn mesh_material_images_count_towards_the_texel_budget() {
 /// mean".
 #[test]
 fn scene_messages_point_at_what_is_wrong() {
-    let whole = prism::scene::parse_scene(
+    let whole = prism::scene_file::parse_scene(
         "[[spheres]]\ncenter = [0, 0, -5]\nradius = 1\n",
         Path::new("s.toml"),
         Path::new("."),

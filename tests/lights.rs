@@ -8,7 +8,8 @@ use prism::accel::Reach;
 use prism::geometry::Ray;
 use prism::integrator::Integrator;
 use prism::sampler::SampleStream;
-use prism::scene::{PreparedScene, Scene, parse_scene};
+use prism::scene::{PreparedScene, Scene};
+use prism::scene_file::parse_scene;
 use std::path::Path;
 
 /// A white matte floor (y = 0), no ambient light, and `lights` (TOML) above it, with an

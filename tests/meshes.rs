@@ -9,7 +9,8 @@ use glam::Vec3;
 use prism::accel::{Reach, Surface};
 use prism::geometry::{Ray, RayQuery};
 use prism::render::RenderSettings;
-use prism::scene::{PreparedScene, Scene, SceneError, ShapeDesc, load_scene, parse_scene};
+use prism::scene::{PreparedScene, Scene, ShapeDesc};
+use prism::scene_file::{SceneError, load_scene, parse_scene};
 use std::path::Path;
 use std::sync::Arc;
 

@@ -5,7 +5,8 @@
 //! searches far longer.
 
 use prism::render::RenderSettings;
-use prism::scene::{PreparedScene, parse_scene};
+use prism::scene::PreparedScene;
+use prism::scene_file::parse_scene;
 use proptest::prelude::*;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, OnceLock};
@@ -204,15 +205,15 @@ fn base_dir() -> &'static Path {
 fn loads_or_explains(text: &str) -> Result<(), TestCaseError> {
     let path = Path::new("mutant.toml");
     frame_loads_or_explains(parse_scene(text, path, base_dir()))?;
-    if let Ok(Some(animation)) = prism::scene::Animation::parse(text, path) {
-        let assets = prism::scene::Assets::Folder(base_dir());
+    if let Ok(Some(animation)) = prism::scene_file::Animation::parse(text, path) {
+        let assets = prism::scene_file::Assets::Folder(base_dir());
         frame_loads_or_explains(animation.scene_at(animation.frames - 1, path, assets))?;
     }
     Ok(())
 }
 
 fn frame_loads_or_explains(
-    scene: Result<prism::scene::Scene, prism::scene::SceneError>,
+    scene: Result<prism::scene::Scene, prism::scene_file::SceneError>,
 ) -> Result<(), TestCaseError> {
     match scene {
         Err(e) => {

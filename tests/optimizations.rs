@@ -235,7 +235,7 @@ fn rays_inside_isolated_solids_find_what_the_bvh_finds() {
 /// sampled points, and the soft-shadow scene is opaque, so the any-hit path is taken.
 #[test]
 fn soft_shadows_draw_the_same_image_with_every_shortcut_off() {
-    let scene = prism::scene::parse_scene(
+    let scene = prism::scene_file::parse_scene(
         include_str!("../assets/scenes/soft_shadows.toml"),
         std::path::Path::new("soft_shadows.toml"),
         std::path::Path::new("."),

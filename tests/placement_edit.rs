@@ -1,11 +1,12 @@
-//! The viewer's transform edits (`Scene::place_object`): an object's `translate`, `rotate`
+//! The viewer's transform edits (`LoadedScene::place_object`): an object's `translate`, `rotate`
 //! and `scale` set from outside the file give exactly the shapes the file with those values
 //! gives, are refused where the file would be, and save back to a file that loads as the
 //! scene shown.
 
 use glam::{DVec3, Vec3};
 use prism::scene::ShapeDesc;
-use prism::scene::{EditError, LoadedScene, ObjectPlacement, load_scene_file, saved_text};
+use prism::scene::{EditError, ObjectPlacement};
+use prism::scene_file::{LoadedScene, load_scene_file, saved_text};
 use std::path::PathBuf;
 
 /// A square pyramid with two materials: a mesh entry of two parts.
@@ -157,7 +158,7 @@ fn every_kind_placed_by_an_edit_equals_the_file_with_those_values() {
         for p in placements {
             let mut edited = loaded.scene.clone();
             let objects = objects_of(&loaded, entry);
-            edited.place_object(&loaded, objects[0], p).unwrap();
+            loaded.place_object(&mut edited, objects[0], p).unwrap();
             let mut wanted = vec![None; ENTRIES.len()];
             wanted[entry] = Some(p);
             let file = files.load("expected.toml", &text(&wanted));
@@ -198,7 +199,7 @@ fn a_placement_the_file_refuses_is_refused_naming_the_entry() {
     ];
     for (object, p, says) in cases {
         let mut edited = loaded.scene.clone();
-        let e = edited.place_object(&loaded, object, p).unwrap_err();
+        let e = loaded.place_object(&mut edited, object, p).unwrap_err();
         let EditError::Placement { item, message } = &e else {
             panic!("{e:?}")
         };
@@ -212,7 +213,7 @@ fn a_placement_the_file_refuses_is_refused_naming_the_entry() {
     }
     let mut edited = loaded.scene.clone();
     assert_eq!(
-        edited.place_object(&loaded, 99, ObjectPlacement::IDENTITY),
+        loaded.place_object(&mut edited, 99, ObjectPlacement::IDENTITY),
         Err(EditError::NoSuchObject(99))
     );
 }
@@ -226,9 +227,9 @@ fn placements_save_back_and_load_as_the_scene_shown() {
     let mesh = objects_of(&loaded, 10);
     assert_eq!(mesh.len(), 2, "the pyramid has two materials");
     let mut edited = loaded.scene.clone();
-    edited
+    loaded
         .place_object(
-            &loaded,
+            &mut edited,
             mesh[1],
             placement([0.0, 0.5, -1.0], [0.0, 45.0, 0.0], [1.5; 3]),
         )
@@ -242,12 +243,16 @@ fn placements_save_back_and_load_as_the_scene_shown() {
         other => panic!("{other:?}"),
     };
     assert_eq!(transform(mesh[0]), transform(mesh[1]));
-    edited
-        .place_object(&loaded, 0, placement([0.0; 3], [0.0; 3], [1.0, 2.0, 1.0]))
-        .unwrap();
-    edited
+    loaded
         .place_object(
-            &loaded,
+            &mut edited,
+            0,
+            placement([0.0; 3], [0.0; 3], [1.0, 2.0, 1.0]),
+        )
+        .unwrap();
+    loaded
+        .place_object(
+            &mut edited,
             5,
             placement([0.25, 0.0, 0.0], [0.0, 0.0, 15.0], [1.0; 3]),
         )
@@ -283,11 +288,13 @@ fn an_animated_placement_is_edited_at_its_frame() {
     );
     let path = files.dir.join("animated.toml");
     std::fs::write(&path, &animated).unwrap();
-    let loaded = prism::scene::load_scene_file_at(&path, 5).result.unwrap();
+    let loaded = prism::scene_file::load_scene_file_at(&path, 5)
+        .result
+        .unwrap();
     let ball = &loaded.scene.objects[0];
     assert_eq!(ball.placement.translate, DVec3::new(1.0, 0.0, 0.0));
     let mut edited = loaded.scene.clone();
-    edited.place_object(&loaded, 0, ball.placement).unwrap();
+    loaded.place_object(&mut edited, 0, ball.placement).unwrap();
     assert_eq!(
         edited, loaded.scene,
         "the frame's own placement changes nothing"
@@ -296,7 +303,7 @@ fn an_animated_placement_is_edited_at_its_frame() {
         rotate: Vec3::new(0.0, 0.0, 90.0),
         ..ball.placement
     };
-    edited.place_object(&loaded, 0, turned).unwrap();
+    loaded.place_object(&mut edited, 0, turned).unwrap();
     let still = files.load("still.toml", &text(&[Some(turned)]));
     assert_eq!(edited.objects[0].shape, still.scene.objects[0].shape);
 }

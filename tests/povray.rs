@@ -13,7 +13,7 @@ mod common;
 
 use prism::render::RenderSettings;
 use prism::sampler::SampleLayout;
-use prism::scene::parse_scene;
+use prism::scene_file::parse_scene;
 use std::path::Path;
 use std::process::Command;
 

@@ -261,7 +261,7 @@ fn light_ambient_background_and_depth_edits_draw_what_a_fresh_preparation_draws(
 #[test]
 fn adaptive_sampling_of_soft_shadows_needs_two_agreeing_checks() {
     let text = include_str!("../assets/scenes/soft_shadows.toml");
-    let scene = prism::scene::parse_scene(
+    let scene = prism::scene_file::parse_scene(
         text,
         std::path::Path::new("soft_shadows.toml"),
         std::path::Path::new("."),

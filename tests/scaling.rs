@@ -3,7 +3,8 @@
 //! light buffer listed every sphere in every cell it covered). A counting allocator
 //! measures the peak, so the bound is on bytes, not on time.
 
-use prism::scene::{PreparedScene, parse_scene};
+use prism::scene::PreparedScene;
+use prism::scene_file::parse_scene;
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::path::Path;
 use std::sync::atomic::{AtomicUsize, Ordering};

@@ -8,7 +8,8 @@ use glam::{DVec3, Vec3};
 use prism::accel::Reach;
 use prism::geometry::{Ray, RayQuery};
 use prism::render::RenderSettings;
-use prism::scene::{PreparedScene, Scene, ShapeDesc, parse_scene};
+use prism::scene::{PreparedScene, Scene, ShapeDesc};
+use prism::scene_file::parse_scene;
 use std::path::Path;
 
 const CAMERA: &str = "[camera]\neye = [0, 3, 8]\nlook_at = [0, 0, 0]\nfov = 40\n\n\

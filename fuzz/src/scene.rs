@@ -3,7 +3,8 @@
 //! pixels to finite colours, with no panic, hang or runaway allocation on the way.
 
 use prism::render::RenderSettings;
-use prism::scene::{PreparedScene, parse_scene};
+use prism::scene::PreparedScene;
+use prism::scene_file::parse_scene;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 

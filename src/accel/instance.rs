@@ -67,10 +67,10 @@ impl Model {
     }
 
     /// The largest group of its triangles that share one centre (none for a shape).
-    pub fn coincident(&self) -> super::Coincident {
+    pub fn coincident(&self) -> super::bvh::Coincident {
         match self {
             Model::Mesh { bvh, .. } => bvh.coincident,
-            Model::Shape(_) => super::Coincident::default(),
+            Model::Shape(_) => super::bvh::Coincident::default(),
         }
     }
 

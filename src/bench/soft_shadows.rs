@@ -6,7 +6,8 @@ use super::convergence::{Measure, Size, Timed, first_below, measure, plot, refer
 use anyhow::{Context, Result};
 use plotters::style::RGBColor;
 use prism::render::{AdaptiveSettings, RenderSettings};
-use prism::scene::{PreparedScene, parse_scene};
+use prism::scene::PreparedScene;
+use prism::scene_file::parse_scene;
 use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::sync::Arc;

@@ -3,7 +3,7 @@
 
 use super::render_args::{BadOption, RenderArgs};
 use anyhow::{Result, bail};
-use prism::scene::Animation;
+use prism::scene_file::Animation;
 use std::path::PathBuf;
 
 /// The frames the flags ask for.

@@ -11,7 +11,7 @@ mod stop;
 use anyhow::Result;
 use clap::{Parser, Subcommand};
 use prism::render::{OutputError, SettingsError};
-use prism::scene::SceneError;
+use prism::scene_file::SceneError;
 use std::path::PathBuf;
 
 #[derive(Parser, Debug)]
@@ -117,7 +117,7 @@ fn view(args: ViewArgs) -> Result<()> {
             (crate::viewer::Start::Seed(scene), defaults)
         }
         Some(path) => {
-            let load = prism::scene::load_scene_file(path);
+            let load = prism::scene_file::load_scene_file(path);
             let defaults = match &load.result {
                 Ok(loaded) => loaded.scene.render,
                 Err(_) => prism::scene::RenderDefaults::default(),

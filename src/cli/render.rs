@@ -14,7 +14,8 @@ use prism::render::{AdaptiveSettings, PendingFile, RenderMemory, RenderSettings}
 use prism::render::{BitDepth, ImageFormat, OutputOptions, PixelRect, Placement};
 use prism::render::{available_memory, gib};
 use prism::sampler::SampleLayout;
-use prism::scene::{PreparedScene, Scene, SceneFrames};
+use prism::scene::{PreparedScene, Scene};
+use prism::scene_file::SceneFrames;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::Instant;

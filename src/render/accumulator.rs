@@ -103,7 +103,7 @@ impl Accumulator {
     }
 
     /// The sums of the pixels in `rect` (in this image's coordinates, inside it).
-    pub fn crop(&self, rect: super::PixelRect) -> Accumulator {
+    pub fn crop(&self, rect: super::region::PixelRect) -> Accumulator {
         assert!(rect.check_within(self.width, self.height).is_ok());
         let w = self.width as usize;
         let pixels = (rect.y0..rect.y1)

@@ -148,7 +148,7 @@ pub fn encode(acc: &Accumulator, format: ImageFormat, options: &OutputOptions) -
             DynamicImage::ImageRgb16(ImageBuffer::from_raw(w, h, raw).expect("size"))
         }
         _ => {
-            let raw: Vec<u8> = means.flat_map(super::to_8bit).collect();
+            let raw: Vec<u8> = means.flat_map(super::accumulator::to_8bit).collect();
             DynamicImage::ImageRgb8(ImageBuffer::from_raw(w, h, raw).expect("size"))
         }
     }

@@ -1,9 +1,7 @@
 //! Changes to a loaded scene from outside the file (the viewer's sliders), checked like the
 //! file itself: a bad value is refused with a message, never rendered.
 
-use super::description::{ObjectPlacement, Scene};
-use super::error::SceneError;
-use super::file::LoadedScene;
+use super::description::Scene;
 use crate::appearance::{Background, Falloff, LightKind, Material, MaterialProblem, SpotCone};
 use crate::camera::Camera;
 use crate::limits::{
@@ -257,39 +255,11 @@ impl Scene {
 }
 
 impl Scene {
-    /// Places object `object`'s entry in the scene file by `placement` (its `translate`,
-    /// `rotate` and `scale`), as `loaded`, the load this scene comes from, would with those
-    /// values: the same shapes, checked by the same rules. A mesh entry's parts move
-    /// together.
-    pub fn place_object(
-        &mut self,
-        loaded: &LoadedScene,
-        object: usize,
-        placement: ObjectPlacement,
-    ) -> Result<(), EditError> {
-        if object >= self.objects.len() {
-            return Err(EditError::NoSuchObject(object));
-        }
-        let placed = loaded
-            .placed_entry(self, object, &placement)
-            .map_err(|e| match e {
-                SceneError::Invalid { item, message, .. } => EditError::Placement { item, message },
-                other => EditError::Placement {
-                    item: self.objects[object].name.clone(),
-                    message: other.to_string(),
-                },
-            })?
-            .ok_or(EditError::NoSuchObject(object))?;
-        for (i, shape) in placed.shapes {
-            let o = &mut self.objects[i];
-            o.shape = shape;
-            o.placement = placed.placement;
-        }
-        Ok(())
-    }
-
     /// Object `object`, to edit.
-    fn object_mut(&mut self, object: usize) -> Result<&mut super::SceneObject, EditError> {
+    fn object_mut(
+        &mut self,
+        object: usize,
+    ) -> Result<&mut super::description::SceneObject, EditError> {
         self.objects
             .get_mut(object)
             .ok_or(EditError::NoSuchObject(object))
@@ -367,7 +337,7 @@ mod tests {
 
     #[test]
     fn effect_edits_keep_the_files_rules() {
-        let mut scene = crate::scene::parse_scene(
+        let mut scene = crate::scene_file::parse_scene(
             "[camera]\neye = [0, 0, 0]\nfov = 40\n[fog]\ndensity = 0.1\n\
              [[lights]]\ntype = \"area\"\ncorner = [0, 5, 0]\nedge_u = [2, 0, 0]\nedge_v = [0, 0, 2]\n\
              [[lights]]\ntype = \"spot\"\nposition = [0, 5, 0]\ndirection = [0, -1, 0]\nangle = 20\n\
@@ -457,7 +427,7 @@ mod tests {
     /// the file's words; a refused material leaves the scene as it was.
     #[test]
     fn a_material_the_file_would_refuse_is_refused_with_its_words() {
-        let template = crate::scene::parse_scene(
+        let template = crate::scene_file::parse_scene(
             "[camera]\neye = [0, 0, 0]\nfov = 40\n[[spheres]]\ncenter = [0, 0, -5]\nradius = 1\n",
             std::path::Path::new("m.toml"),
             std::path::Path::new("."),

@@ -5,7 +5,8 @@
 
 use super::watch::Watcher;
 use prism::camera::Camera;
-use prism::scene::{LoadedScene, Scene, SceneLoad, load_scene_file_at};
+use prism::scene::Scene;
+use prism::scene_file::{LoadedScene, SceneLoad, load_scene_file_at};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU32, Ordering};
@@ -137,7 +138,7 @@ pub fn camera_after_reload(before: &Scene, after: &Scene, current: Camera) -> Ca
 #[cfg(test)]
 mod tests {
     use super::*;
-    use prism::scene::parse_scene;
+    use prism::scene_file::parse_scene;
 
     fn scene(text: &str) -> Scene {
         parse_scene(text, Path::new("s.toml"), Path::new(".")).unwrap()

@@ -20,7 +20,8 @@ use gfx::Gfx;
 use history::{EditKey, History};
 use panel::{PANEL_WIDTH, PanelState};
 use prism::render::{AdaptiveSettings, RenderSettings};
-use prism::scene::{Scene, SceneLoad};
+use prism::scene::Scene;
+use prism::scene_file::SceneLoad;
 use render_thread::{RenderThread, Request, Status};
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
@@ -207,7 +208,7 @@ fn step_for(scene: &Scene) -> f32 {
 
 /// What the window shows while no scene has loaded: nothing, under the default camera.
 fn empty_scene() -> Scene {
-    prism::scene::parse_scene(
+    prism::scene_file::parse_scene(
         "[camera]\neye = [0, 0, 0]\nfov = 40\n",
         Path::new("(no scene)"),
         Path::new("."),
@@ -442,7 +443,7 @@ impl App {
         {
             // The entry is validated again with these values, as a load of the file would be.
             let before = self.panel.scene.clone();
-            match self.panel.scene.place_object(loaded, object, placement) {
+            match loaded.place_object(&mut self.panel.scene, object, placement) {
                 Ok(()) if self.panel.scene != before => {
                     edits.push((EditKey(format!("object {object} {field}")), before))
                 }
@@ -600,13 +601,14 @@ impl App {
             self.say("not saved: no scene file has loaded".into(), true);
             return false;
         };
-        let saved = match prism::scene::saved_text(loaded, &self.panel.scene, &self.panel.camera) {
-            Ok(saved) => saved,
-            Err(e) => {
-                self.say(format!("not saved: {e}"), true);
-                return false;
-            }
-        };
+        let saved =
+            match prism::scene_file::saved_text(loaded, &self.panel.scene, &self.panel.camera) {
+                Ok(saved) => saved,
+                Err(e) => {
+                    self.say(format!("not saved: {e}"), true);
+                    return false;
+                }
+            };
         match prism::render::write_bytes(path, saved.text.as_bytes()) {
             Ok(_) => {
                 self.document.saved = Some(self.panel.scene.clone());

@@ -772,7 +772,7 @@ impl PanelState {
             }
             // The view as the scene file's [camera] table, to paste into a file.
             if ui.button("Copy camera").clicked() {
-                let table = prism::scene::camera_table(&self.camera, self.scene.origin);
+                let table = prism::scene_file::camera_table(&self.camera, self.scene.origin);
                 ui.ctx().copy_text(table.clone());
                 eprintln!("prism: copied the camera:\n{table}");
                 self.message = Some(("copied the [camera] table".into(), false));
@@ -1025,7 +1025,7 @@ mod tests {
                  material = \"m\"\n"
             );
             let path = std::path::Path::new("walk.toml");
-            prism::scene::parse_scene(&text, path, std::path::Path::new(".")).is_ok()
+            prism::scene_file::parse_scene(&text, path, std::path::Path::new(".")).is_ok()
         };
         let show = |v: f32| format!("{v:e}");
         for (eta, ok) in ends(&SLIDERS.eta) {

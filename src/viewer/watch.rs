@@ -4,7 +4,7 @@
 //! second, which works on every file system (network mounts and editors that replace the
 //! file by renaming included) without a platform notification API.
 
-use prism::scene::{SceneLoad, load_scene_file_at};
+use prism::scene_file::{SceneLoad, load_scene_file_at};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicU32, Ordering};
@@ -162,7 +162,7 @@ mod tests {
             )
         };
         std::fs::write(&path, good(1.0)).unwrap();
-        let first = prism::scene::load_scene_file(&path);
+        let first = prism::scene_file::load_scene_file(&path);
         let (tx, rx) = channel();
         let frame = Arc::new(AtomicU32::new(0));
         let _watcher = Watcher::spawn(path.clone(), first.files, frame, move |load| {

@@ -3,13 +3,13 @@
 //! coordinates and in f64, so that a transform of a far-off scene keeps its precision.
 
 use super::entry_def::EntryDef;
+use super::error::SceneError;
 use super::fixed_array::Fixed;
-use super::{Item, P3, Validator};
+use super::validator::{Item, P3, Validator};
 use crate::geometry::Transform;
 use crate::limits;
 use crate::messages::number;
-use crate::scene::description::ObjectPlacement;
-use crate::scene::error::SceneError;
+use crate::scene::ObjectPlacement;
 use glam::{Affine3A, DMat3, DVec3, Mat3A, Vec3A};
 
 /// An object's placement in world coordinates.

@@ -1,6 +1,7 @@
 //! Errors of loading a scene, each naming the file, the place in it, and the problem.
 
-use std::path::PathBuf;
+use std::ops::Range;
+use std::path::{Path, PathBuf};
 use thiserror::Error;
 
 /// Why a scene file cannot be loaded, with where in the file.
@@ -82,6 +83,54 @@ pub(crate) fn line_column(source: &str, offset: usize) -> (usize, usize) {
     let line = before.matches('\n').count() + 1;
     let column = before.rfind('\n').map_or(offset, |nl| offset - nl - 1) + 1;
     (line, column)
+}
+
+/// The parser's error `message` about `source` (the file `path`) at `span`, in the
+/// format's words, with the entry it lies in named (`spheres[0] "glass ball": …`). Where a
+/// bracket opened before that place is never closed, the error is that bracket's, at its
+/// line: the parser stops only where the text no longer fits, often lines later.
+pub(super) fn syntax_error(
+    source: &str,
+    path: &Path,
+    span: Option<Range<usize>>,
+    message: &str,
+) -> SceneError {
+    let offset = span.as_ref().map_or(0, |s| s.start);
+    let plain = crate::messages::plain_type_words(message.trim());
+    // The parser may quote the file (an unknown key of any length, say).
+    let text = crate::messages::shown_within(&plain, 400);
+    let unclosed = super::brackets::scan_brackets(source, usize::MAX)
+        .unclosed
+        .filter(|&at| at < offset && line_column(source, at).0 < line_column(source, offset).0);
+    if let Some(at) = unclosed {
+        let (line, column) = line_column(source, at);
+        let bracket = &source[at..at + 1];
+        return SceneError::Syntax {
+            path: path.to_path_buf(),
+            line,
+            column,
+            message: format!(
+                "this `{bracket}` is never closed (the parser stopped at line {}: {text})",
+                line_column(source, offset).0
+            ),
+        };
+    }
+    // A field missing from the file as a whole has an empty span at its start (an
+    // entry's spans its header): no entry to name.
+    let whole = span.as_ref().is_some_and(|s| s.is_empty());
+    let entry = span
+        .filter(|_| !whole)
+        .and_then(|s| super::spans::entry_at(source, s.start));
+    let (line, column) = line_column(source, offset);
+    SceneError::Syntax {
+        path: path.to_path_buf(),
+        line,
+        column,
+        message: match entry {
+            Some(entry) => format!("{entry}: {text}"),
+            None => text,
+        },
+    }
 }
 
 #[cfg(test)]

@@ -2,8 +2,9 @@
 //! whatever its shape: the interface placement and the entry machinery share, below both
 //! (entry.rs implements it for every kind).
 
-use super::{P3, V3};
-use crate::scene::description::ObjectPlacement;
+use super::validator::{P3, V3};
+use crate::messages::quoted;
+use crate::scene::ObjectPlacement;
 
 /// The fields every object entry has, whatever its shape.
 pub(super) trait EntryDef {
@@ -14,4 +15,12 @@ pub(super) trait EntryDef {
     fn placement(&self) -> (Option<P3>, Option<V3>, Option<&toml::Value>);
     /// Gives it `p`'s `translate`, `rotate` and `scale` in place of its own.
     fn set_placement(&mut self, p: &ObjectPlacement);
+}
+
+/// How messages name entry `i` of table `kind`: `spheres[2]`, or `spheres[2] "ball"`.
+pub(super) fn entry_label(kind: &str, i: usize, name: Option<&str>) -> String {
+    match name {
+        Some(n) => format!("{kind}[{i}] {}", quoted(n)),
+        None => format!("{kind}[{i}]"),
+    }
 }

@@ -66,7 +66,7 @@ mod tests {
                 "{}\n[[spheres]]\ncenter = [0, 0, -5]\nradius = 1\n",
                 camera_table(&camera, origin)
             );
-            let scene = crate::scene::parse_scene(
+            let scene = crate::scene_file::parse_scene(
                 &text,
                 std::path::Path::new("camera.toml"),
                 std::path::Path::new("."),

@@ -14,7 +14,7 @@ use super::error::{SceneError, line_column};
 use crate::limits;
 use glam::{DQuat, EulerRot};
 use serde::Deserialize;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use toml::Spanned;
 use toml_edit::{DocumentMut, Item, TableLike, Value};
 
@@ -127,7 +127,7 @@ impl Animation {
                     let e = toml::from_str::<WithAnimation>(source)
                         .err()
                         .expect("it failed");
-                    Err(super::file::syntax_error(
+                    Err(super::error::syntax_error(
                         source,
                         path,
                         e.span(),
@@ -264,24 +264,6 @@ impl Animation {
             }
         }
         document.to_string()
-    }
-}
-
-impl Animation {
-    /// The scene at `frame`: the file `path` at that frame, validated, its files found by
-    /// `assets`. A value out of bounds there is refused as `SceneError::Frame`.
-    pub fn scene_at(
-        &self,
-        frame: u32,
-        path: &Path,
-        assets: super::Assets,
-    ) -> Result<super::Scene, SceneError> {
-        super::file::parse_still(&self.source_at(frame), path, assets, &mut Vec::new())
-            .map(|(scene, _)| scene)
-            .map_err(|error| SceneError::Frame {
-                frame,
-                error: Box::new(error),
-            })
     }
 }
 
@@ -611,83 +593,10 @@ fn entry_mut(item: Option<&mut Item>, index: usize) -> Option<&mut dyn TableLike
     }
 }
 
-/// A scene to render frame by frame: an animated scene file, or a still scene (whose only
-/// frame is 0).
-pub struct SceneFrames {
-    kind: FramesKind,
-    /// The files the first frame read, the scene file first.
-    files: Vec<PathBuf>,
-    /// The meshes and images the frames read, each once for all of them.
-    cache: super::ReadCache,
-}
-
-enum FramesKind {
-    Still(super::Scene),
-    Animated {
-        path: PathBuf,
-        animation: std::sync::Arc<Animation>,
-    },
-}
-
-impl SceneFrames {
-    /// The scene file at `path`, animated or not, with its first frame validated (as
-    /// `load_scene` does).
-    pub fn load(path: &Path) -> Result<Self, SceneError> {
-        let cache = super::ReadCache::default();
-        let load = super::file::load_scene_file_cached(path, 0, &cache);
-        let loaded = load.result?;
-        let kind = match loaded.animation {
-            None => FramesKind::Still(loaded.scene),
-            Some(animation) => FramesKind::Animated {
-                path: path.to_path_buf(),
-                animation,
-            },
-        };
-        Ok(Self {
-            kind,
-            files: load.files,
-            cache,
-        })
-    }
-
-    /// A still scene.
-    pub fn fixed(scene: super::Scene) -> Self {
-        Self {
-            kind: FramesKind::Still(scene),
-            files: Vec::new(),
-            cache: super::ReadCache::default(),
-        }
-    }
-
-    /// The files the scene reads (its first frame), the scene file first; none for a
-    /// scene built in memory.
-    pub fn files(&self) -> &[PathBuf] {
-        &self.files
-    }
-
-    /// The animation, if the scene has one.
-    pub fn animation(&self) -> Option<&Animation> {
-        match &self.kind {
-            FramesKind::Still(_) => None,
-            FramesKind::Animated { animation, .. } => Some(animation),
-        }
-    }
-
-    /// The scene at `frame` (a still scene is the same at every frame).
-    pub fn frame(&self, frame: u32) -> Result<super::Scene, SceneError> {
-        match &self.kind {
-            FramesKind::Still(scene) => Ok(scene.clone()),
-            FramesKind::Animated { path, animation } => {
-                let base = path.parent().unwrap_or(Path::new("."));
-                animation.scene_at(frame, path, super::Assets::Cached(base, &self.cache))
-            }
-        }
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scene_file::SceneFrames;
     use glam::DVec3;
 
     fn track(field: &str, interpolation: Interpolation, keys: &[(f64, &[f64])]) -> Track {
@@ -858,14 +767,14 @@ keys = [{ frame = 0, value = [0.8, 0.1, 0.1] }, { frame = 9, value = [0.1, 0.1, 
             );
         let still = &still[..still.find("[animation]").unwrap()];
         let dir = Path::new(".");
-        let assets = crate::scene::Assets::Folder(dir);
+        let assets = crate::scene_file::Assets::Folder(dir);
         let (framed, _) =
-            super::super::file::parse_still(&text, Path::new("a.toml"), assets, &mut Vec::new())
+            super::super::load::parse_still(&text, Path::new("a.toml"), assets, &mut Vec::new())
                 .unwrap();
-        let expected = crate::scene::parse_scene(still, Path::new("b.toml"), dir).unwrap();
+        let expected = crate::scene_file::parse_scene(still, Path::new("b.toml"), dir).unwrap();
         assert_eq!(framed, expected);
         // The loader takes an animated file at its first frame.
-        let first = crate::scene::parse_scene(SCENE, Path::new("a.toml"), dir).unwrap();
+        let first = crate::scene_file::parse_scene(SCENE, Path::new("a.toml"), dir).unwrap();
         assert_eq!(
             first.camera.eye,
             glam::Vec3::ZERO,
@@ -879,7 +788,11 @@ keys = [{ frame = 0, value = [0.8, 0.1, 0.1] }, { frame = 9, value = [0.1, 0.1, 
         let path = dir.path().join("a.toml");
         std::fs::write(&path, SCENE).unwrap();
         let frames = SceneFrames::load(&path).unwrap();
-        let at = |n| crate::scene::load_scene_file_at(&path, n).result.unwrap();
+        let at = |n| {
+            crate::scene_file::load_scene_file_at(&path, n)
+                .result
+                .unwrap()
+        };
         assert_eq!(at(0).scene, frames.frame(0).unwrap());
         let six = at(6);
         assert_eq!((six.frame, six.scene), (6, frames.frame(6).unwrap()));
@@ -889,7 +802,9 @@ keys = [{ frame = 0, value = [0.8, 0.1, 0.1] }, { frame = 9, value = [0.1, 0.1, 
         // A still file has only frame 0.
         let still = dir.path().join("b.toml");
         std::fs::write(&still, &SCENE[..SCENE.find("[animation]").unwrap()]).unwrap();
-        let loaded = crate::scene::load_scene_file_at(&still, 5).result.unwrap();
+        let loaded = crate::scene_file::load_scene_file_at(&still, 5)
+            .result
+            .unwrap();
         assert_eq!(loaded.frame, 0);
         assert!(loaded.animation.is_none());
     }
@@ -914,7 +829,7 @@ keys = [{ frame = 0, value = [0.8, 0.1, 0.1] }, { frame = 9, value = [0.1, 0.1, 
         std::fs::write(&path, scene).unwrap();
         let fresh: Vec<_> = (0..4)
             .map(|f| {
-                crate::scene::load_scene_file_at(&path, f)
+                crate::scene_file::load_scene_file_at(&path, f)
                     .result
                     .unwrap()
                     .scene
@@ -939,7 +854,7 @@ keys = [{ frame = 0, value = [0.8, 0.1, 0.1] }, { frame = 9, value = [0.1, 0.1, 
              [[spheres]]\ncenter = [0, 0, 0]\nradius = -1\n"
         );
         let line = text.lines().position(|l| l == "radius = -1").unwrap() + 1;
-        let e = crate::scene::parse_scene(&text, Path::new("a.toml"), Path::new("."))
+        let e = crate::scene_file::parse_scene(&text, Path::new("a.toml"), Path::new("."))
             .unwrap_err()
             .to_string();
         assert!(
@@ -967,7 +882,7 @@ keys = [{ frame = 0, value = [0.8, 0.1, 0.1] }, { frame = 9, value = [0.1, 0.1, 
     fn a_field_a_track_overwrites_is_checked_as_written() {
         let text = SCENE.replace("eye = [0, 1, 8]    # the eye", "eye = [nan, 1, 8]");
         assert_ne!(text, SCENE);
-        let e = crate::scene::parse_scene(&text, Path::new("a.toml"), Path::new("."))
+        let e = crate::scene_file::parse_scene(&text, Path::new("a.toml"), Path::new("."))
             .unwrap_err()
             .to_string();
         assert!(e.starts_with("a.toml:3: ") && e.contains("eye"), "{e}");
@@ -978,10 +893,12 @@ keys = [{ frame = 0, value = [0.8, 0.1, 0.1] }, { frame = 9, value = [0.1, 0.1, 
         assert_ne!(text, SCENE, "the edit applies");
         match Animation::parse(&text, Path::new("a.toml")) {
             Err(e) => e.to_string(),
-            Ok(_) => match crate::scene::parse_scene(&text, Path::new("a.toml"), Path::new(".")) {
-                Err(e) => e.to_string(),
-                Ok(_) => panic!("accepted: {}", edit.1),
-            },
+            Ok(_) => {
+                match crate::scene_file::parse_scene(&text, Path::new("a.toml"), Path::new(".")) {
+                    Err(e) => e.to_string(),
+                    Ok(_) => panic!("accepted: {}", edit.1),
+                }
+            }
         }
     }
 
@@ -1044,7 +961,7 @@ keys = [{ frame = 0, value = [0.8, 0.1, 0.1] }, { frame = 9, value = [0.1, 0.1, 
         let e = a.scene_at(
             3,
             Path::new("a.toml"),
-            crate::scene::Assets::Folder(Path::new(".")),
+            crate::scene_file::Assets::Folder(Path::new(".")),
         );
         assert!(e.unwrap_err().to_string().starts_with("frame 3: "));
 

@@ -3,17 +3,21 @@
 //! another placement, as a load of the file with those values would validate it (the
 //! viewer's transform edits).
 
-use super::entry_def::EntryDef;
+use super::assemble::SceneFile;
+use super::assets::Assets;
+use super::entry_def::{EntryDef, entry_label};
+use super::error::SceneError;
 use super::fixed_array::Fixed;
-use super::solids::{BoxDef, ConeDef, DiscDef, PlaneDef, TorusDef};
-use super::{
-    CylinderDef, Item, LoadedScene, MeshDef, P3, PolygonDef, SceneFile, SphereDef, TetrahedronDef,
-    TriangleDef, V3, Validator,
+use super::load::LoadedScene;
+use super::meshes::MeshDef;
+use super::shapes::{
+    BoxDef, ConeDef, CylinderDef, DiscDef, PlaneDef, PolygonDef, SphereDef, TetrahedronDef,
+    TorusDef, TriangleDef,
 };
-use crate::messages::quoted;
-use crate::scene::description::{ObjectPlacement, Scene, ShapeDesc};
-use crate::scene::error::SceneError;
-use crate::scene::spans::FieldSpans;
+
+use super::spans::FieldSpans;
+use super::validator::{Item, P3, V3, Validator};
+use crate::scene::{EditError, ObjectPlacement, Scene, ShapeDesc};
 use std::path::PathBuf;
 
 macro_rules! entry_defs {
@@ -56,14 +60,6 @@ entry_defs!(
     TorusDef
 );
 
-/// How messages name entry `i` of table `kind`: `spheres[2]`, or `spheres[2] "ball"`.
-pub(super) fn entry_label(kind: &str, i: usize, name: Option<&str>) -> String {
-    match name {
-        Some(n) => format!("{kind}[{i}] {}", quoted(n)),
-        None => format!("{kind}[{i}]"),
-    }
-}
-
 /// Object `object`'s entry placed anew: each object the entry makes (a mesh entry's every
 /// part), by its index in the scene, with its shape.
 pub(crate) struct PlacedEntry {
@@ -74,6 +70,36 @@ pub(crate) struct PlacedEntry {
 }
 
 impl LoadedScene {
+    /// Places `scene`'s object `object` (an edit of this load's scene) by `placement` (its
+    /// entry's `translate`, `rotate` and `scale`), as this load would with those values: the
+    /// same shapes, checked by the same rules. A mesh entry's parts move together.
+    pub fn place_object(
+        &self,
+        scene: &mut Scene,
+        object: usize,
+        placement: ObjectPlacement,
+    ) -> Result<(), EditError> {
+        if object >= scene.objects.len() {
+            return Err(EditError::NoSuchObject(object));
+        }
+        let placed = self
+            .placed_entry(scene, object, &placement)
+            .map_err(|e| match e {
+                SceneError::Invalid { item, message, .. } => EditError::Placement { item, message },
+                other => EditError::Placement {
+                    item: scene.objects[object].name.clone(),
+                    message: other.to_string(),
+                },
+            })?
+            .ok_or(EditError::NoSuchObject(object))?;
+        for (i, shape) in placed.shapes {
+            let o = &mut scene.objects[i];
+            o.shape = shape;
+            o.placement = placed.placement;
+        }
+        Ok(())
+    }
+
     /// The shapes object `object`'s entry makes when its `translate`, `rotate` and `scale`
     /// are `placement`'s: exactly those a load of the file with these values would make,
     /// checked by the same rules. `scene` is this load's scene, edited or not (a mesh's
@@ -99,7 +125,7 @@ impl LoadedScene {
             path: PathBuf::new(),
             source: &source,
             spans: FieldSpans::new(&source),
-            assets: super::Assets::Embedded(&[]),
+            assets: Assets::Embedded(&[]),
             origin: glam::DVec3::from(file.camera.get_ref().eye),
             reads: Default::default(),
         };

@@ -2,11 +2,11 @@
 //! the values that changed are rewritten; every other line, comment and blank keeps its
 //! place (`toml_edit` keeps the file's layout).
 
-use super::description::{Scene, ShapeDesc};
-use super::file::LoadedScene;
+use super::load::LoadedScene;
 use crate::appearance::{Background, Falloff, Fog, FogKind, Light, LightKind, Material, Texture};
 use crate::camera::Camera;
 use crate::messages::shortest;
+use crate::scene::{Scene, ShapeDesc};
 use glam::{DVec3, Vec3};
 use std::collections::BTreeMap;
 use thiserror::Error;
@@ -88,7 +88,7 @@ pub fn saved_text(
 
 /// The camera's fields replaced by the view as it is now (eye, yaw and pitch, the lens).
 fn write_camera(doc: &mut DocumentMut, camera: &Camera, origin: DVec3) -> Result<(), SaveError> {
-    let table: DocumentMut = super::camera_table(camera, origin)
+    let table: DocumentMut = super::camera_table::camera_table(camera, origin)
         .parse()
         .map_err(|e: toml_edit::TomlError| SaveError::Parse(e.message().to_string()))?;
     let new = table["camera"]
@@ -570,7 +570,7 @@ fn point(p: Vec3, origin: DVec3) -> Value {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::load_scene_file;
+    use crate::scene_file::load_scene_file;
 
     fn load(text: &str) -> (tempfile::TempDir, std::path::PathBuf, LoadedScene) {
         let dir = tempfile::tempdir().unwrap();
@@ -740,7 +740,7 @@ material = \"mirror\"
             let mut e = edited.clone();
             let mut p = e.objects[i].placement;
             p.translate += DVec3::from(by);
-            e.place_object(loaded, i, p).unwrap();
+            loaded.place_object(&mut e, i, p).unwrap();
             e
         };
         edited = moved(&edited, &loaded, 0, [0.5, 0.0, -1.0]);

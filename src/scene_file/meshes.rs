@@ -1,19 +1,35 @@
 //! `[[meshes]]`: triangle meshes read from OBJ files, with their MTL materials mapped onto
 //! prism's. A file placed by many entries is read and built once (instancing).
 
+use super::error::SceneError;
+use super::obj::{LineError, MtlMaterial, parse_mtl, parse_obj};
 use super::placement::Placement;
 use super::read_cache::ReadMesh;
-use super::{BudgetError, Images, Item, MeshDef, Validator};
+use super::textures::{BudgetError, Images};
+use super::validator::{Item, P3, V3, Validator};
 use crate::appearance::{Material, Texture, UvTransform};
 use crate::geometry::{Mesh, Transform};
 use crate::limits;
 use crate::messages::quoted;
-use crate::scene::error::SceneError;
-use crate::scene::obj::{LineError, MtlMaterial, parse_mtl, parse_obj};
 use glam::{DVec3, Vec3};
+use serde::Deserialize;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct MeshDef {
+    pub(super) name: Option<String>,
+    pub(super) path: String,
+    pub(super) material: Option<String>,
+    pub(super) smooth: Option<bool>,
+    pub(super) shadow: Option<bool>,
+    pub(super) translate: Option<P3>,
+    pub(super) rotate: Option<V3>,
+    /// A number or [sx, sy, sz].
+    pub(super) scale: Option<toml::Value>,
+}
 
 /// The mesh files one scene reads, each once.
 #[derive(Default)]
@@ -285,13 +301,15 @@ impl Validator<'_> {
                 let bytes = bytes.map_err(|e| e.to_string())?;
                 String::from_utf8(bytes.to_vec()).map_err(|_| "it is not UTF-8 text".into())
             }
-            None => {
-                super::read_text_file(&self.locate(rel), limits::MAX_MESH_FILE_BYTES, "mesh file")
-                    .map_err(|e| match e {
-                        SceneError::Read { reason, .. } => reason,
-                        other => other.to_string(),
-                    })
-            }
+            None => super::assets::read_text_file(
+                &self.locate(rel),
+                limits::MAX_MESH_FILE_BYTES,
+                "mesh file",
+            )
+            .map_err(|e| match e {
+                SceneError::Read { reason, .. } => reason,
+                other => other.to_string(),
+            }),
         }
     }
 

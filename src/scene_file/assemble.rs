@@ -1,0 +1,267 @@
+//! The whole file: its tables read in order (camera, render, textures, materials, lights,
+//! objects), each by its subject's reader, into one `Scene`, and the images it names
+//! counted against one texel budget before any is decoded.
+
+use super::camera::CameraDef;
+use super::entry_def::EntryDef;
+use super::entry_def::entry_label;
+use super::error::SceneError;
+use super::lights::LightDef;
+use super::materials::MaterialDef;
+use super::meshes::MeshDef;
+use super::placement::Placement;
+use super::render_table::{FogDef, RenderDef};
+use super::shapes::{
+    BoxDef, ConeDef, CylinderDef, DiscDef, PlaneDef, PolygonDef, SphereDef, TetrahedronDef,
+    TorusDef, TriangleDef,
+};
+
+use super::textures::{BudgetError, Images, TextureDef};
+use super::validator::{Item, Validator};
+use crate::appearance::Material;
+use crate::messages::{did_you_mean, quoted};
+use crate::scene::{Scene, SceneObject, ShapeDesc};
+use serde::Deserialize;
+use std::collections::{BTreeMap, HashMap};
+use std::ops::Range;
+use toml::Spanned;
+
+/// The entry of a scene file that made an object.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ObjectOrigin {
+    /// The array of tables it is in: "spheres", "boxes", "meshes", ….
+    pub table: &'static str,
+    /// Its index in that array.
+    pub index: usize,
+    /// The name of the `[materials]` entry it uses; None for the default material or for
+    /// a mesh part whose material comes from the mesh's own MTL file.
+    pub material: Option<String>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct SceneFile {
+    pub(super) camera: Spanned<CameraDef>,
+    pub(super) render: Option<Spanned<RenderDef>>,
+    pub(super) fog: Option<Spanned<FogDef>>,
+    #[serde(default)]
+    pub(super) lights: Vec<Spanned<LightDef>>,
+    #[serde(default)]
+    pub(super) textures: BTreeMap<String, Spanned<TextureDef>>,
+    #[serde(default)]
+    pub(super) materials: BTreeMap<String, Spanned<MaterialDef>>,
+    #[serde(default)]
+    pub(super) spheres: Vec<Spanned<SphereDef>>,
+    #[serde(default)]
+    pub(super) cylinders: Vec<Spanned<CylinderDef>>,
+    #[serde(default)]
+    pub(super) polygons: Vec<Spanned<PolygonDef>>,
+    #[serde(default)]
+    pub(super) triangles: Vec<Spanned<TriangleDef>>,
+    #[serde(default)]
+    pub(super) tetrahedra: Vec<Spanned<TetrahedronDef>>,
+    #[serde(default)]
+    pub(super) meshes: Vec<Spanned<MeshDef>>,
+    #[serde(default)]
+    pub(super) boxes: Vec<Spanned<BoxDef>>,
+    #[serde(default)]
+    pub(super) discs: Vec<Spanned<DiscDef>>,
+    #[serde(default)]
+    pub(super) planes: Vec<Spanned<PlaneDef>>,
+    #[serde(default)]
+    pub(super) cones: Vec<Spanned<ConeDef>>,
+    #[serde(default)]
+    pub(super) tori: Vec<Spanned<TorusDef>>,
+    /// Read by animation.rs; a still frame's validation passes over it.
+    #[allow(dead_code)]
+    pub(super) animation: Option<serde::de::IgnoredAny>,
+}
+
+impl Validator<'_> {
+    pub(super) fn scene(&self, file: SceneFile) -> Result<(Scene, Vec<ObjectOrigin>), SceneError> {
+        let camera = self.camera(&file.camera)?;
+        let (render, ambient) = self.render(file.render.as_ref())?;
+        let lights = file
+            .lights
+            .iter()
+            .enumerate()
+            .map(|(i, l)| {
+                let name = format!("lights[{i}]");
+                let at = Item {
+                    span: l.span(),
+                    name: &name,
+                };
+                self.light(&at, l.get_ref())
+            })
+            .collect::<Result<Vec<_>, SceneError>>()?;
+        let fog = self.fog(file.fog.as_ref())?;
+        let mut images = Images::default();
+        self.check_texel_budget(&file.textures, file.render.as_ref(), &mut images)?;
+        let background = self.background(file.render.as_ref(), &mut images)?;
+        let textures = file
+            .textures
+            .iter()
+            .map(|(name, t)| Ok((name.clone(), self.texture(name, t, &mut images)?)))
+            .collect::<Result<HashMap<_, _>, SceneError>>()?;
+        let materials = file
+            .materials
+            .iter()
+            .map(|(name, m)| Ok((name.clone(), self.material(name, m, &textures)?)))
+            .collect::<Result<HashMap<_, _>, SceneError>>()?;
+
+        let mut objects = Vec::new();
+        let mut origins = Vec::new();
+        let mut add = |kind: &'static str,
+                       i: usize,
+                       span: Range<usize>,
+                       d: &dyn EntryDef,
+                       shape: &dyn Fn(&Item, &Placement) -> Result<ShapeDesc, SceneError>|
+         -> Result<(), SceneError> {
+            let label = entry_label(kind, i, d.name());
+            let at = Item { span, name: &label };
+            let material = match d.material() {
+                None => Material::default(),
+                Some(m) => materials.get(m).cloned().ok_or_else(|| {
+                    self.field_error(
+                        &at,
+                        "material",
+                        format!(
+                            "no material named {} (see [materials]){}",
+                            quoted(m),
+                            did_you_mean(m, materials.keys().map(String::as_str))
+                        ),
+                    )
+                })?,
+            };
+            let placement = self.placement(&at, d)?;
+            let shape = shape(&at, &placement)?;
+            objects.push(SceneObject {
+                name: d
+                    .name()
+                    .map_or_else(|| format!("{kind} {i}"), str::to_string),
+                shape,
+                material,
+                casts_shadow: d.shadow().unwrap_or(true),
+                placement: placement.written(),
+            });
+            origins.push(ObjectOrigin {
+                table: kind,
+                index: i,
+                material: d.material().map(str::to_string),
+            });
+            Ok(())
+        };
+        macro_rules! entries {
+            ($list:expr, $kind:literal, $read:ident) => {
+                for (i, item) in $list.iter().enumerate() {
+                    let d = item.get_ref();
+                    add($kind, i, item.span(), d, &|at, p| self.$read(at, d, p))?;
+                }
+            };
+        }
+        entries!(file.spheres, "spheres", sphere);
+        entries!(file.cylinders, "cylinders", cylinder);
+        entries!(file.polygons, "polygons", polygon);
+        entries!(file.triangles, "triangles", triangle);
+        entries!(file.tetrahedra, "tetrahedra", tetrahedron);
+        entries!(file.boxes, "boxes", cuboid);
+        entries!(file.discs, "discs", disc);
+        entries!(file.planes, "planes", plane);
+        entries!(file.cones, "cones", cone);
+        entries!(file.tori, "tori", torus);
+        let mut mesh_files = super::meshes::MeshFiles::default();
+        for (i, m) in file.meshes.iter().enumerate() {
+            let d = m.get_ref();
+            let label = entry_label("meshes", i, d.name());
+            let at = Item {
+                span: m.span(),
+                name: &label,
+            };
+            let material = match &d.material {
+                None => None,
+                Some(name) => Some(materials.get(name).ok_or_else(|| {
+                    self.field_error(
+                        &at,
+                        "material",
+                        format!(
+                            "no material named {} (see [materials]){}",
+                            quoted(name),
+                            did_you_mean(name, materials.keys().map(String::as_str))
+                        ),
+                    )
+                })?),
+            };
+            let placement = self.placement(&at, d)?;
+            let parts = self.mesh_objects(&at, d, material, &mut mesh_files, &mut images)?;
+            let transform =
+                self.mesh_transform(&at, parts.iter().map(|p| p.mesh.as_ref()), &placement)?;
+            let name = d.name.clone().unwrap_or_else(|| format!("meshes {i}"));
+            for part in parts {
+                objects.push(SceneObject {
+                    name: match &part.part {
+                        Some(p) => format!("{name}/{p}"),
+                        None => name.clone(),
+                    },
+                    shape: ShapeDesc::Mesh {
+                        mesh: part.mesh,
+                        transform,
+                    },
+                    material: part.material,
+                    casts_shadow: d.shadow.unwrap_or(true),
+                    placement: placement.written(),
+                });
+                origins.push(ObjectOrigin {
+                    table: "meshes",
+                    index: i,
+                    material: d.material.clone(),
+                });
+            }
+        }
+        let scene = Scene {
+            origin: self.origin,
+            camera,
+            render,
+            background,
+            ambient,
+            lights,
+            fog,
+            objects,
+        };
+        Ok((scene, origins))
+    }
+
+    /// Counts the images of `[textures]` and the background against the scene's texel
+    /// budget from their headers, before any is decoded, refusing the one that passes it
+    /// with its field. (A file that cannot be read is reported when it is loaded.)
+    pub(super) fn check_texel_budget(
+        &self,
+        textures: &BTreeMap<String, Spanned<TextureDef>>,
+        render: Option<&Spanned<RenderDef>>,
+        budget: &mut Images,
+    ) -> Result<(), SceneError> {
+        // Every image the scene names: (where, the field, the path).
+        let mut images: Vec<(String, Range<usize>, &str, &str)> = textures
+            .iter()
+            .filter_map(|(name, t)| {
+                let label = format!("textures.{}", crate::messages::shown(name));
+                match (&t.get_ref().path, t.get_ref().kind.as_str()) {
+                    (Some(rel), "image") => Some((label, t.span(), "path", rel.as_str())),
+                    _ => None,
+                }
+            })
+            .collect();
+        if let Some(r) = render
+            && let Some(toml::Value::Table(t)) = &r.get_ref().background
+            && let Some(toml::Value::String(rel)) = t.get("image")
+        {
+            images.push(("render".into(), r.span(), "background", rel.as_str()));
+        }
+        for (label, span, field, rel) in images {
+            if let Err(BudgetError::Exceeded(message)) = budget.count(self, rel) {
+                let at = Item { span, name: &label };
+                return Err(self.field_error(&at, field, message));
+            }
+        }
+        Ok(())
+    }
+}

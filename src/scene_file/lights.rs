@@ -1,0 +1,211 @@
+//! `[[lights]]`: point, spot, directional, rectangle and sphere lights, their colour and
+//! how their light falls off with distance.
+
+use super::error::SceneError;
+use super::fixed_array::Fixed;
+use super::validator::{Item, P3, V3, Validator};
+use crate::appearance::{AreaShape, Falloff, Light, LightKind, SpotCone};
+use crate::limits;
+use crate::messages::{did_you_mean, quoted};
+use glam::Vec3;
+use serde::Deserialize;
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct LightDef {
+    #[serde(rename = "type")]
+    pub(super) kind: Option<String>,
+    pub(super) position: Option<P3>,
+    pub(super) direction: Option<V3>,
+    pub(super) color: Option<V3>,
+    pub(super) falloff: Option<String>,
+    pub(super) intensity: Option<f32>,
+    pub(super) corner: Option<P3>,
+    pub(super) edge_u: Option<V3>,
+    pub(super) edge_v: Option<V3>,
+    pub(super) radius: Option<f32>,
+    pub(super) angle: Option<f32>,
+    pub(super) softness: Option<f32>,
+    pub(super) visible: Option<bool>,
+}
+
+impl Validator<'_> {
+    pub(super) fn light(&self, at: &Item, l: &LightDef) -> Result<Light, SceneError> {
+        let kind = l.kind.as_deref().unwrap_or("point");
+        // The fields each type takes; any other given is refused by name.
+        let takes: &[&str] = match kind {
+            "point" => &["position", "falloff", "intensity"],
+            "spot" => &[
+                "position",
+                "falloff",
+                "intensity",
+                "direction",
+                "angle",
+                "softness",
+            ],
+            "directional" => &["direction"],
+            "area" => &[
+                "corner",
+                "edge_u",
+                "edge_v",
+                "falloff",
+                "intensity",
+                "visible",
+            ],
+            "sphere" => &["position", "radius", "falloff", "intensity", "visible"],
+            other => {
+                return Err(self.field_error(
+                    at,
+                    "type",
+                    format!(
+                        "unknown light type {} (expected \"point\", \"spot\", \"directional\", \
+                         \"area\" or \"sphere\"){}",
+                        quoted(other),
+                        did_you_mean(other, ["point", "spot", "directional", "area", "sphere"])
+                    ),
+                ));
+            }
+        };
+        let given = [
+            ("position", l.position.is_some()),
+            ("direction", l.direction.is_some()),
+            ("falloff", l.falloff.is_some()),
+            ("intensity", l.intensity.is_some()),
+            ("corner", l.corner.is_some()),
+            ("edge_u", l.edge_u.is_some()),
+            ("edge_v", l.edge_v.is_some()),
+            ("radius", l.radius.is_some()),
+            ("angle", l.angle.is_some()),
+            ("softness", l.softness.is_some()),
+            ("visible", l.visible.is_some()),
+        ];
+        let a = if kind == "area" { "an" } else { "a" };
+        if let Some((field, _)) = given.iter().find(|(f, g)| *g && !takes.contains(f)) {
+            return Err(self.field_error(
+                at,
+                field,
+                format!("`{field}` does not apply to {a} {kind} light"),
+            ));
+        }
+        let needs = |field: &str| self.error(at, format!("{a} {kind} light needs `{field}`"));
+        let position = |field: &str, v: Option<P3>| {
+            let v = v.ok_or_else(|| needs(field))?;
+            self.position(at, field, v)
+        };
+        let direction = || -> Result<Vec3, SceneError> {
+            let d = l.direction.ok_or_else(|| needs("direction"))?;
+            let d = self.point(at, "direction", d)?;
+            crate::numerics::try_normalize(d)
+                .ok_or_else(|| self.field_error(at, "direction", "`direction` has zero length"))
+        };
+        let kind = match kind {
+            "point" => LightKind::Point {
+                position: position("position", l.position)?,
+                falloff: self.falloff(at, l)?,
+            },
+            "spot" => {
+                let (lo, hi) = (*limits::SPOT_ANGLE.start(), *limits::SPOT_ANGLE.end());
+                let angle = l.angle.ok_or_else(|| needs("angle"))?;
+                let angle = self.in_range(at, "angle", angle, lo, hi)?;
+                let softness =
+                    self.in_range(at, "softness", l.softness.unwrap_or(0.0), 0.0, 1.0)?;
+                LightKind::Spot {
+                    position: position("position", l.position)?,
+                    falloff: self.falloff(at, l)?,
+                    cone: SpotCone::new(direction()?, angle, softness),
+                }
+            }
+            "directional" => LightKind::Directional {
+                direction: direction()?,
+            },
+            "area" => {
+                let corner = position("corner", l.corner)?;
+                let edge = |field: &str, v: Option<V3>| {
+                    let v = v.ok_or_else(|| needs(field))?;
+                    let e = self.point(at, field, v)?;
+                    if e.abs().max_element() as f64 > limits::MAX_COORDINATE {
+                        return Err(self.field_error(
+                            at,
+                            field,
+                            format!(
+                                "`{field}` must lie within {:e} on every axis",
+                                limits::MAX_COORDINATE
+                            ),
+                        ));
+                    }
+                    Ok(e)
+                };
+                let (edge_u, edge_v) = (edge("edge_u", l.edge_u)?, edge("edge_v", l.edge_v)?);
+                // The two edges must span a parallelogram: neither may be (nearly) zero
+                // or parallel to the other, or its samples would all lie on a line.
+                let area = edge_u.as_dvec3().cross(edge_v.as_dvec3()).length();
+                let lengths = edge_u.as_dvec3().length() * edge_v.as_dvec3().length();
+                if !(area > 1e-6 * lengths && area.sqrt() >= limits::MIN_LENGTH) {
+                    return Err(self.field_error(
+                        at,
+                        "edge_v",
+                        "`edge_u` and `edge_v` must span a rectangle: neither zero nor parallel",
+                    ));
+                }
+                LightKind::Area {
+                    shape: AreaShape::Rectangle {
+                        corner,
+                        edge_u,
+                        edge_v,
+                    },
+                    falloff: self.falloff(at, l)?,
+                    visible: l.visible.unwrap_or(true),
+                }
+            }
+            _ => {
+                let radius = l.radius.ok_or_else(|| needs("radius"))?;
+                LightKind::Area {
+                    shape: AreaShape::Sphere {
+                        center: position("position", l.position)?,
+                        radius: self.length(at, "radius", radius)?,
+                    },
+                    falloff: self.falloff(at, l)?,
+                    visible: l.visible.unwrap_or(true),
+                }
+            }
+        };
+        Ok(Light {
+            kind,
+            color: self.radiance(at, "color", l.color.unwrap_or(Fixed([1.0; 3])))?,
+        })
+    }
+
+    /// A light's `falloff` and `intensity`.
+    pub(super) fn falloff(&self, at: &Item, l: &LightDef) -> Result<Falloff, SceneError> {
+        match l.falloff.as_deref().unwrap_or("none") {
+            "none" => {
+                if l.intensity.is_some() {
+                    return Err(self.field_error(
+                        at,
+                        "intensity",
+                        "`intensity` needs `falloff = \"inverse_square\"` (without \
+                         falloff, `color` alone sets the brightness)",
+                    ));
+                }
+                Ok(Falloff::None)
+            }
+            "inverse_square" => Ok(Falloff::InverseSquare {
+                intensity: self.in_range(
+                    at,
+                    "intensity",
+                    l.intensity.unwrap_or(1.0),
+                    0.0,
+                    limits::MAX_LIGHT_INTENSITY,
+                )?,
+            }),
+            other => Err(self.field_error(
+                at,
+                "falloff",
+                format!(
+                    "unknown falloff {} (expected \"none\" or \"inverse_square\")",
+                    quoted(other)
+                ),
+            )),
+        }
+    }
+}
