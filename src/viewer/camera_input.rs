@@ -143,6 +143,13 @@ impl CameraInput {
     }
 }
 
+/// A tap moves 1/64 of the scene's size; a held key flies a quarter of it a second.
+pub fn step_for(scene: &prism::scene::Scene) -> f32 {
+    scene
+        .bounds()
+        .map_or(0.625, |b| ((b.max - b.min).length() / 64.0).max(1e-3))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -1,0 +1,114 @@
+//! Edits: the panel's changes applied to the scene and sent to the render thread, each kept
+//! in the history so that Ctrl+Z and Ctrl+Shift+Z undo and redo it.
+
+use super::app::App;
+use super::history::EditKey;
+use super::panel;
+use super::render_thread::Request;
+use std::time::Instant;
+
+impl App {
+    /// Sends what the panel changed to the render thread, and does what it asked.
+    pub(super) fn apply(&mut self, changes: panel::Changes) {
+        let now = Instant::now();
+        let mut edits = changes.edits;
+        if let Some((object, placement, field)) = changes.place
+            && let Some(loaded) = &self.document.loaded
+        {
+            // The entry is validated again with these values, as a load of the file would be.
+            let before = self.panel.scene.clone();
+            match loaded.place_object(&mut self.panel.scene, object, placement) {
+                Ok(()) if self.panel.scene != before => {
+                    edits.push((EditKey(format!("object {object} {field}")), before))
+                }
+                Ok(()) => {}
+                Err(e) => self.panel.message = Some((e.to_string(), true)),
+            }
+        }
+        let edited = !edits.is_empty();
+        for (key, before) in edits {
+            self.history.record(&before, key, now);
+        }
+        if edited {
+            self.send_scene();
+        }
+        let Some(g) = &self.gfx else { return };
+        if let Some(selection) = changes.select {
+            g.render.send(Request::Select(selection));
+        }
+        if let Some(view) = changes.view {
+            g.render.send(Request::View(view));
+        }
+        if changes.camera {
+            self.send_camera(false);
+        }
+        if changes.settings {
+            let (iw, ih) = g.image_size();
+            let generation = g.render.send(Request::Settings(self.settings(iw, ih)));
+            if let Some(t) = &mut self.timing {
+                t.sent(generation, "settings");
+            }
+        }
+        if changes.screenshot {
+            self.screenshot();
+        }
+        if changes.save {
+            self.save();
+        }
+        if let Some(path) = changes.save_as {
+            self.save_as(path);
+        }
+        if let Some(path) = changes.open {
+            self.open(path);
+        }
+        if changes.reload {
+            self.reload();
+        }
+        if let Some(frame) = changes.frame {
+            // The file is loaded again at the frame: unsaved edits are one undo away, as
+            // for any reload.
+            self.document.set_frame(frame);
+            self.reload();
+        }
+        if changes.undo {
+            self.undo();
+        }
+        if changes.redo {
+            self.redo();
+        }
+    }
+
+    /// The panel's scene to the render thread (which rebuilds only what changed).
+    pub(super) fn send_scene(&mut self) {
+        if let Some(g) = &self.gfx {
+            let generation = g
+                .render
+                .send(Request::Scene(Box::new(self.panel.scene.clone())));
+            if let Some(t) = &mut self.timing {
+                t.sent(generation, "edit");
+            }
+        }
+    }
+
+    pub(super) fn undo(&mut self) {
+        match self.history.undo(&self.panel.scene) {
+            Some(scene) => {
+                self.panel.set_scene(scene);
+                self.send_scene();
+                self.say("undid the last edit".into(), false);
+            }
+            None => self.say("nothing to undo".into(), false),
+        }
+    }
+
+    pub(super) fn redo(&mut self) {
+        match self.history.redo(&self.panel.scene) {
+            Some(scene) => {
+                self.panel.set_scene(scene);
+                self.send_scene();
+                self.say("redid the edit".into(), false);
+            }
+            None => self.say("nothing to redo".into(), false),
+        }
+    }
+}

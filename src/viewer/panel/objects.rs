@@ -1,0 +1,176 @@
+//! The panel's objects: the list to pick from, and the selection's material (colour or
+//! texture, Phong factors, mirror, glass, emission) and place (translate, rotate, scale).
+
+use super::widgets::{color_row, position_row, scale_text, texture_kind, xyz};
+use super::{Changes, PanelState, SLIDERS};
+use egui::{DragValue, RichText, Slider, SliderClamping};
+use glam::DVec3;
+use prism::appearance::Texture;
+use prism::limits::{MAX_PHONG_FACTOR, MAX_RADIANCE, MAX_SHININESS};
+
+impl PanelState {
+    /// The list of objects, and the selected one's material.
+    pub(super) fn objects(&mut self, ui: &mut egui::Ui, changes: &mut Changes) {
+        ui.label(RichText::new("Objects").strong());
+        egui::ScrollArea::vertical()
+            .id_salt("objects")
+            .max_height(110.0)
+            .show(ui, |ui| {
+                for (i, o) in self.scene.objects.iter().enumerate() {
+                    let picked = self.selected == Some(i);
+                    if ui.selectable_label(picked, &o.name).clicked() {
+                        let new = if picked { None } else { Some(i) };
+                        self.selected = new;
+                        changes.select = Some(new);
+                    }
+                }
+            });
+        let Some(i) = self.selected else {
+            ui.small("Click an object in the image or the list to edit it.");
+            return;
+        };
+        ui.label(RichText::new(format!("Selected: {}", self.scene.objects[i].name)).strong());
+        // Its entry's `translate`, `rotate` and `scale`, as the file has them.
+        let mut p = self.scene.objects[i].placement;
+        let before = p;
+        position_row(ui, "translate", &mut p.translate);
+        ui.horizontal(|ui| {
+            ui.label("rotate °").on_hover_text(
+                "The file's `rotate`: degrees about x, then y, then z, about the world's \
+                 origin, after the scale and before the move",
+            );
+            let r = &mut p.rotate;
+            // Any finite angle, as in the file: place_object refuses the rest.
+            xyz(ui, [&mut r.x, &mut r.y, &mut r.z], |d| d.speed(0.5));
+        });
+        ui.horizontal(|ui| {
+            ui.label("scale").on_hover_text(
+                "The file's `scale`: about the world's origin, before the turn and the move",
+            );
+            fn factor(d: DragValue<'_>) -> DragValue<'_> {
+                d.range(prism::limits::SCALE)
+                    .speed(0.01)
+                    .custom_formatter(|v, _| scale_text(v))
+            }
+            let even = p.scale.x == p.scale.y && p.scale.y == p.scale.z;
+            if even && !self.scale_per_axis {
+                let mut k = p.scale.x;
+                if ui.add(factor(DragValue::new(&mut k))).changed() {
+                    p.scale = DVec3::splat(k);
+                }
+            } else {
+                let s = &mut p.scale;
+                xyz(ui, [&mut s.x, &mut s.y, &mut s.z], factor);
+            }
+            let mut per_axis = self.scale_per_axis || !even;
+            if ui
+                .add_enabled(even, egui::Checkbox::new(&mut per_axis, "per axis"))
+                .changed()
+            {
+                self.scale_per_axis = per_axis;
+            }
+        });
+        let field = if p.translate != before.translate {
+            "translate"
+        } else if p.rotate != before.rotate {
+            "rotate"
+        } else {
+            "scale"
+        };
+        if p != before {
+            changes.place = Some((i, p, field));
+        }
+        let mut m = self.scene.objects[i].material.clone();
+        let before = m.clone();
+        let mut field = "";
+        match &mut m.texture {
+            Texture::Solid(c) => {
+                if color_row(ui, "colour", c, 0.0..=1.0, true) {
+                    field = "color";
+                }
+            }
+            other => {
+                ui.label(format!("colour: {} texture", texture_kind(other)));
+            }
+        }
+        let factors: [(&str, &mut f32, f32, f32); 4] = [
+            ("ambient", &mut m.ambient, MAX_PHONG_FACTOR, 0.01),
+            ("diffuse", &mut m.diffuse, MAX_PHONG_FACTOR, 0.01),
+            ("specular", &mut m.specular, MAX_PHONG_FACTOR, 0.01),
+            ("shininess", &mut m.shininess, MAX_SHININESS, 1.0),
+        ];
+        ui.horizontal_wrapped(|ui| {
+            for (name, v, hi, speed) in factors {
+                let r = ui.add(
+                    DragValue::new(v)
+                        .range(0.0..=hi)
+                        .speed(speed)
+                        .prefix(format!("{name} ")),
+                );
+                if r.changed() {
+                    field = name;
+                }
+            }
+        });
+        for (name, v) in [
+            ("reflectivity", &mut m.reflectivity),
+            ("transparency", &mut m.transparency),
+        ] {
+            let r = ui.add(
+                Slider::new(v, SLIDERS.transparency)
+                    .clamping(SliderClamping::Always)
+                    .text(name),
+            );
+            if r.changed() {
+                field = name;
+            }
+        }
+        let mut refracts = m.eta.is_some();
+        let mut eta = m.eta.unwrap_or(1.5);
+        ui.horizontal(|ui| {
+            let c = ui.checkbox(&mut refracts, "");
+            let r = ui.add_enabled(
+                refracts,
+                // The whole range a file may give, on a log scale centred on 1.
+                Slider::new(&mut eta, SLIDERS.eta)
+                    .logarithmic(true)
+                    .clamping(SliderClamping::Always)
+                    .max_decimals(4)
+                    .text("eta"),
+            );
+            if c.changed() || r.changed() {
+                field = "eta";
+            }
+        });
+        m.eta = refracts.then_some(eta);
+        if !refracts {
+            m.fresnel = false;
+        }
+        let reflects = m.reflectivity > 0.0 || m.fresnel;
+        let r = ui.add_enabled(
+            reflects,
+            Slider::new(&mut m.roughness, prism::limits::ROUGHNESS)
+                .clamping(SliderClamping::Always)
+                .text("roughness"),
+        );
+        if r.changed() {
+            field = "roughness";
+        }
+        if !reflects {
+            m.roughness = 0.0;
+        }
+        let glass = matches!(m.eta, Some(e) if e != 1.0) && m.conductor.is_none();
+        let r = ui.add_enabled(glass, egui::Checkbox::new(&mut m.fresnel, "Fresnel glass"));
+        if r.changed() {
+            field = "fresnel";
+        }
+        if color_row(ui, "emission", &mut m.emission, 0.0..=MAX_RADIANCE, false) {
+            field = "emission";
+        }
+        if m != before {
+            self.edit(changes, format!("object {i} {field}"), |s| {
+                s.set_material(i, m)
+            });
+        }
+    }
+}
