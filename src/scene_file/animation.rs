@@ -11,6 +11,7 @@
 //! they say (a linear `rotate` spins through every degree between its keys: a turntable).
 
 use super::error::{SceneError, line_column};
+use super::kinds::object_kinds;
 use crate::limits;
 use glam::{DQuat, EulerRot};
 use serde::Deserialize;
@@ -18,20 +19,16 @@ use std::path::Path;
 use toml::Spanned;
 use toml_edit::{DocumentMut, Item, TableLike, Value};
 
-/// The tables of the scene file that hold objects, each an array of tables.
-pub const OBJECT_TABLES: [&str; 11] = [
-    "spheres",
-    "cylinders",
-    "polygons",
-    "triangles",
-    "tetrahedra",
-    "meshes",
-    "boxes",
-    "discs",
-    "planes",
-    "cones",
-    "tori",
-];
+/// The names of the object kinds' tables (kinds.rs).
+macro_rules! table_names {
+    ($($table:ident: $def:ty, $($how:ident)+;)*) => {
+        [$(stringify!($table)),*]
+    };
+}
+
+/// The tables of the scene file that hold objects, each an array of tables, in the file's
+/// order (kinds.rs).
+pub const OBJECT_TABLES: [&str; 11] = object_kinds!(table_names);
 
 /// How a track moves between its keys.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -6,15 +6,11 @@ use super::camera::CameraDef;
 use super::entry_def::EntryDef;
 use super::entry_def::entry_label;
 use super::error::SceneError;
+use super::kinds::object_kinds;
 use super::lights::LightDef;
 use super::materials::MaterialDef;
-use super::meshes::MeshDef;
 use super::placement::Placement;
 use super::render_table::{FogDef, RenderDef};
-use super::shapes::{
-    BoxDef, ConeDef, CylinderDef, DiscDef, PlaneDef, PolygonDef, SphereDef, TetrahedronDef,
-    TorusDef, TriangleDef,
-};
 
 use super::textures::{BudgetError, Images, TextureDef};
 use super::validator::{Item, Validator};
@@ -38,44 +34,33 @@ pub struct ObjectOrigin {
     pub material: Option<String>,
 }
 
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-pub(super) struct SceneFile {
-    pub(super) camera: Spanned<CameraDef>,
-    pub(super) render: Option<Spanned<RenderDef>>,
-    pub(super) fog: Option<Spanned<FogDef>>,
-    #[serde(default)]
-    pub(super) lights: Vec<Spanned<LightDef>>,
-    #[serde(default)]
-    pub(super) textures: BTreeMap<String, Spanned<TextureDef>>,
-    #[serde(default)]
-    pub(super) materials: BTreeMap<String, Spanned<MaterialDef>>,
-    #[serde(default)]
-    pub(super) spheres: Vec<Spanned<SphereDef>>,
-    #[serde(default)]
-    pub(super) cylinders: Vec<Spanned<CylinderDef>>,
-    #[serde(default)]
-    pub(super) polygons: Vec<Spanned<PolygonDef>>,
-    #[serde(default)]
-    pub(super) triangles: Vec<Spanned<TriangleDef>>,
-    #[serde(default)]
-    pub(super) tetrahedra: Vec<Spanned<TetrahedronDef>>,
-    #[serde(default)]
-    pub(super) meshes: Vec<Spanned<MeshDef>>,
-    #[serde(default)]
-    pub(super) boxes: Vec<Spanned<BoxDef>>,
-    #[serde(default)]
-    pub(super) discs: Vec<Spanned<DiscDef>>,
-    #[serde(default)]
-    pub(super) planes: Vec<Spanned<PlaneDef>>,
-    #[serde(default)]
-    pub(super) cones: Vec<Spanned<ConeDef>>,
-    #[serde(default)]
-    pub(super) tori: Vec<Spanned<TorusDef>>,
-    /// Read by animation.rs; a still frame's validation passes over it.
-    #[allow(dead_code)]
-    pub(super) animation: Option<serde::de::IgnoredAny>,
+/// The whole file as parsed: the scene-wide tables, then one array of tables per kind of
+/// object entry (kinds.rs).
+macro_rules! scene_file {
+    ($($table:ident: $def:ty, $($how:ident)+;)*) => {
+        #[derive(Deserialize)]
+        #[serde(deny_unknown_fields)]
+        pub(super) struct SceneFile {
+            pub(super) camera: Spanned<CameraDef>,
+            pub(super) render: Option<Spanned<RenderDef>>,
+            pub(super) fog: Option<Spanned<FogDef>>,
+            #[serde(default)]
+            pub(super) lights: Vec<Spanned<LightDef>>,
+            #[serde(default)]
+            pub(super) textures: BTreeMap<String, Spanned<TextureDef>>,
+            #[serde(default)]
+            pub(super) materials: BTreeMap<String, Spanned<MaterialDef>>,
+            $(
+                #[serde(default)]
+                pub(super) $table: Vec<Spanned<$def>>,
+            )*
+            /// Read by animation.rs; a still frame's validation passes over it.
+            #[allow(dead_code)]
+            pub(super) animation: Option<serde::de::IgnoredAny>,
+        }
+    };
 }
+object_kinds!(scene_file);
 
 impl Validator<'_> {
     pub(super) fn scene(&self, file: SceneFile) -> Result<(Scene, Vec<ObjectOrigin>), SceneError> {
@@ -151,24 +136,24 @@ impl Validator<'_> {
             });
             Ok(())
         };
-        macro_rules! entries {
-            ($list:expr, $kind:literal, $read:ident) => {
-                for (i, item) in $list.iter().enumerate() {
-                    let d = item.get_ref();
-                    add($kind, i, item.span(), d, &|at, p| self.$read(at, d, p))?;
-                }
+        // Every shape entry, kind by kind; meshes, which make an object per part, after.
+        macro_rules! shape_entries {
+            ($($table:ident: $def:ty, $($how:ident)+;)*) => {
+                $(shape_entry!($table $($how)+);)*
             };
         }
-        entries!(file.spheres, "spheres", sphere);
-        entries!(file.cylinders, "cylinders", cylinder);
-        entries!(file.polygons, "polygons", polygon);
-        entries!(file.triangles, "triangles", triangle);
-        entries!(file.tetrahedra, "tetrahedra", tetrahedron);
-        entries!(file.boxes, "boxes", cuboid);
-        entries!(file.discs, "discs", disc);
-        entries!(file.planes, "planes", plane);
-        entries!(file.cones, "cones", cone);
-        entries!(file.tori, "tori", torus);
+        macro_rules! shape_entry {
+            ($table:ident shape $read:ident) => {
+                for (i, item) in file.$table.iter().enumerate() {
+                    let d = item.get_ref();
+                    add(stringify!($table), i, item.span(), d, &|at, p| {
+                        self.$read(at, d, p)
+                    })?;
+                }
+            };
+            ($table:ident mesh) => {};
+        }
+        object_kinds!(shape_entries);
         let mut mesh_files = super::meshes::MeshFiles::default();
         for (i, m) in file.meshes.iter().enumerate() {
             let d = m.get_ref();

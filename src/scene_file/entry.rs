@@ -8,20 +8,17 @@ use super::assets::Assets;
 use super::entry_def::{EntryDef, entry_label};
 use super::error::SceneError;
 use super::fixed_array::Fixed;
+use super::kinds::object_kinds;
 use super::load::LoadedScene;
-use super::meshes::MeshDef;
-use super::shapes::{
-    BoxDef, ConeDef, CylinderDef, DiscDef, PlaneDef, PolygonDef, SphereDef, TetrahedronDef,
-    TorusDef, TriangleDef,
-};
 
 use super::spans::FieldSpans;
 use super::validator::{Item, P3, V3, Validator};
 use crate::scene::{EditError, ObjectPlacement, Scene, ShapeDesc};
 use std::path::PathBuf;
 
+/// The entry interface for every kind of object entry (kinds.rs).
 macro_rules! entry_defs {
-    ($($def:ty),*) => {$(
+    ($($table:ident: $def:ty, $($how:ident)+;)*) => {$(
         impl EntryDef for $def {
             fn name(&self) -> Option<&str> {
                 self.name.as_deref()
@@ -46,19 +43,7 @@ macro_rules! entry_defs {
     )*};
 }
 
-entry_defs!(
-    SphereDef,
-    CylinderDef,
-    PolygonDef,
-    TriangleDef,
-    TetrahedronDef,
-    MeshDef,
-    BoxDef,
-    DiscDef,
-    PlaneDef,
-    ConeDef,
-    TorusDef
-);
+object_kinds!(entry_defs);
 
 /// Object `object`'s entry placed anew: each object the entry makes (a mesh entry's every
 /// part), by its index in the scene, with its shape.
@@ -152,19 +137,22 @@ impl LoadedScene {
                 (vec![(object, v.$read(&at, d, &placed)?)], placed.written())
             }};
         }
-        let (shapes, written) = match table {
-            "spheres" => placed!(file.spheres, sphere),
-            "cylinders" => placed!(file.cylinders, cylinder),
-            "polygons" => placed!(file.polygons, polygon),
-            "triangles" => placed!(file.triangles, triangle),
-            "tetrahedra" => placed!(file.tetrahedra, tetrahedron),
-            "boxes" => placed!(file.boxes, cuboid),
-            "discs" => placed!(file.discs, disc),
-            "planes" => placed!(file.planes, plane),
-            "cones" => placed!(file.cones, cone),
-            "tori" => placed!(file.tori, torus),
-            "meshes" => {
-                let (d, span, label) = entry!(file.meshes);
+        // The entry's kind, by its table (kinds.rs).
+        macro_rules! placed_entries {
+            ($($table:ident: $def:ty, $($how:ident)+;)*) => {
+                $(if table == stringify!($table) {
+                    placed_entry!($table $($how)+)
+                } else)* {
+                    return Ok(None);
+                }
+            };
+        }
+        macro_rules! placed_entry {
+            ($table:ident shape $read:ident) => {
+                placed!(file.$table, $read)
+            };
+            ($table:ident mesh) => {{
+                let (d, span, label) = entry!(file.$table);
                 let at = Item { span, name: &label };
                 let placed = v.placement(&at, d)?;
                 // Every part of the entry, with the mesh it holds.
@@ -172,7 +160,7 @@ impl LoadedScene {
                     .origins
                     .iter()
                     .enumerate()
-                    .filter(|(_, o)| o.table == "meshes" && o.index == index)
+                    .filter(|(_, o)| o.table == stringify!($table) && o.index == index)
                     .filter_map(|(j, _)| match &scene.objects.get(j)?.shape {
                         ShapeDesc::Mesh { mesh, .. } => Some((j, mesh.clone())),
                         _ => None,
@@ -185,9 +173,9 @@ impl LoadedScene {
                     .map(|(j, mesh)| (j, ShapeDesc::Mesh { mesh, transform }))
                     .collect();
                 (shapes, placed.written())
-            }
-            _ => return Ok(None),
-        };
+            }};
+        }
+        let (shapes, written) = object_kinds!(placed_entries);
         Ok(Some(PlacedEntry {
             shapes,
             placement: written,

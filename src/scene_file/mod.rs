@@ -16,6 +16,7 @@ mod entry_def;
 mod error;
 mod fixed_array;
 mod frames;
+mod kinds;
 mod lights;
 mod load;
 mod materials;

@@ -240,8 +240,8 @@ impl PanelState {
 mod tests {
     use super::widgets::scale_text;
     use super::*;
-    use prism::scene::check_camera;
     use prism::render::{AdaptiveSettings, RenderSettings};
+    use prism::scene::check_camera;
 
     /// A scale shows as few digits as it needs, and the smallest one a file may give
     /// does not read as zero.
