@@ -150,6 +150,80 @@ pub fn number(v: f32) -> String {
     plain_or_exponent(v, v.abs() as f64)
 }
 
+/// A field that breaks a rule, and what is wrong with it, in the scene file's words (the
+/// message names the field). The rules a model's values follow (`Material::check`,
+/// `Light::check`) return it; the file places it at the field's line, an edit names the
+/// object or light.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("{message}")]
+pub struct FieldProblem {
+    /// The field at fault, as the scene file spells it.
+    pub field: &'static str,
+    /// What is wrong with it.
+    pub message: String,
+}
+
+impl FieldProblem {
+    /// `field` refused for `message`.
+    pub fn new(field: &'static str, message: impl Into<String>) -> Self {
+        Self {
+            field,
+            message: message.into(),
+        }
+    }
+
+    /// Number `v` of `field` within `range` ([`outside_range`]).
+    pub fn check_range(
+        field: &'static str,
+        v: f32,
+        range: &std::ops::RangeInclusive<f32>,
+    ) -> Result<(), FieldProblem> {
+        match outside_range(field, v, range) {
+            Some(message) => Err(Self::new(field, message)),
+            None => Ok(()),
+        }
+    }
+
+    /// Length `v` of `field` ([`outside_length`]).
+    pub fn check_length(field: &'static str, v: f32) -> Result<(), FieldProblem> {
+        match outside_length(field, v) {
+            Some(message) => Err(Self::new(field, message)),
+            None => Ok(()),
+        }
+    }
+
+    /// Colour `c` of `field` in [0, hi] per channel ([`outside_color_range`]).
+    pub fn check_color(
+        field: &'static str,
+        c: [f32; 3],
+        hi: f32,
+        why: &str,
+    ) -> Result<(), FieldProblem> {
+        match outside_color_range(field, c, hi, why) {
+            Some(message) => Err(Self::new(field, message)),
+            None => Ok(()),
+        }
+    }
+}
+
+/// Why length `v` of `field` (a radius, a height, a pattern's size) is refused: not finite,
+/// not positive, or outside `limits::LENGTH`; None when it is taken.
+pub fn outside_length(field: &str, v: f32) -> Option<String> {
+    use crate::limits::{LENGTH, MAX_COORDINATE, MIN_LENGTH};
+    let problem = if !v.is_finite() {
+        return outside_range(field, v, &LENGTH);
+    } else if v <= 0.0 {
+        "be greater than zero"
+    } else if v < *LENGTH.start() {
+        &format!("be at least {MIN_LENGTH:e}")
+    } else if v > *LENGTH.end() {
+        &format!("be at most {MAX_COORDINATE:e}")
+    } else {
+        return None;
+    };
+    Some(format!("`{field}` must {problem}, got {}", number(v)))
+}
+
 /// Why number `v` of `field` is refused: not finite, or outside `range`; None when it is
 /// taken. The one wording for every range a scene file or an edit checks.
 pub fn outside_range(field: &str, v: f32, range: &std::ops::RangeInclusive<f32>) -> Option<String> {

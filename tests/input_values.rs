@@ -272,6 +272,20 @@ fn scene_messages_point_at_what_is_wrong() {
         .unwrap_err();
     assert!(!e.contains("Fixed"), "{e}");
 
+    // A light's values are every light's rules (`Light::check`), placed at their field.
+    refused(
+        "[[lights]]\ntype = \"spot\"\nposition = [0, 5, 0]\ndirection = [0, -1, 0]\nangle = 200\n",
+        &["scene.toml:10: lights[0]: `angle` must lie in [0.01, 180], got 200"],
+    );
+    refused(
+        "[[lights]]\ntype = \"area\"\ncorner = [0, 5, 0]\nedge_u = [1, 0, 0]\nedge_v = [2, 0, 0]\n",
+        &["scene.toml:10: lights[0]: `edge_u` and `edge_v` must span a rectangle"],
+    );
+    refused(
+        "[[lights]]\nposition = [0, 5, 0]\nfalloff = \"inverse_square\"\nintensity = -1\n",
+        &["scene.toml:9: lights[0]: `intensity` must lie in [0, 1e30], got -1"],
+    );
+
     let (_d, dir) = dir_with(&[("far.obj", "v 3e38 0 0\nv 0 3e38 0\nv 0 0 3e38\nf 1 2 3\n")]);
     let e = parse_in("[[meshes]]\npath = \"far.obj\"\n", &dir).unwrap_err();
     assert!(

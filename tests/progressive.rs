@@ -1,13 +1,16 @@
 //! The progressive engine the viewer runs: one subsample per pixel per pass, cancellable at
 //! any moment, converging to exactly the one-shot render.
 
+mod common;
+
 use prism::render::{self, AdaptiveSettings, PassOutcome, ProgressiveRender, RenderSettings};
 use prism::scene::PreparedScene;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
+/// The seed scene prepared, and its camera.
 fn seed() -> (Arc<PreparedScene>, prism::camera::Camera) {
-    let scene = prism::seed::scene().unwrap();
+    let scene = common::seed();
     (Arc::new(PreparedScene::new(&scene)), scene.camera)
 }
 

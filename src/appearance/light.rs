@@ -1,7 +1,10 @@
 //! Light sources: what kind of light, how bright, how it falls off, and for lights with an
 //! area, where on them a shadow ray ends.
 
+use super::material::RADIANCE_BOUND;
 use crate::geometry::{Ray, Sphere};
+use crate::limits::{self, MAX_COORDINATE, MIN_LENGTH};
+use crate::messages::FieldProblem;
 use glam::{Vec3, Vec3A};
 
 /// A light: its kind and where it shines from, and its colour.
@@ -284,7 +287,111 @@ impl Falloff {
     }
 }
 
+/// A point of `field` (relative to the scene's origin at the camera) within
+/// `MAX_COORDINATE` of it on every axis.
+fn within_reach(field: &'static str, p: Vec3) -> Result<(), FieldProblem> {
+    if p.is_finite() && p.abs().max_element() as f64 <= MAX_COORDINATE {
+        Ok(())
+    } else {
+        Err(FieldProblem::new(
+            field,
+            format!(
+                "`{field}` must hold finite numbers within {MAX_COORDINATE:e} of the camera on \
+                 every axis, got {:?}",
+                p.to_array()
+            ),
+        ))
+    }
+}
+
+impl Falloff {
+    /// An inverse-square intensity within `limits::MAX_LIGHT_INTENSITY`.
+    pub fn check(&self) -> Result<(), FieldProblem> {
+        match *self {
+            Falloff::None => Ok(()),
+            Falloff::InverseSquare { intensity } => FieldProblem::check_range(
+                "intensity",
+                intensity,
+                &(0.0..=limits::MAX_LIGHT_INTENSITY),
+            ),
+        }
+    }
+}
+
+impl AreaShape {
+    /// A rectangle whose corner is within reach and whose edges are, spanning a
+    /// parallelogram (neither edge zero nor parallel to the other, or its samples would
+    /// all lie on a line); a sphere within reach of a radius `limits::LENGTH` takes.
+    pub fn check(&self) -> Result<(), FieldProblem> {
+        match *self {
+            AreaShape::Rectangle {
+                corner,
+                edge_u,
+                edge_v,
+            } => {
+                within_reach("corner", corner)?;
+                for (field, e) in [("edge_u", edge_u), ("edge_v", edge_v)] {
+                    if !(e.is_finite() && e.abs().max_element() as f64 <= MAX_COORDINATE) {
+                        return Err(FieldProblem::new(
+                            field,
+                            format!("`{field}` must lie within {MAX_COORDINATE:e} on every axis"),
+                        ));
+                    }
+                }
+                let area = edge_u.as_dvec3().cross(edge_v.as_dvec3()).length();
+                let lengths = edge_u.as_dvec3().length() * edge_v.as_dvec3().length();
+                if area > 1e-6 * lengths && area.sqrt() >= MIN_LENGTH {
+                    Ok(())
+                } else {
+                    Err(FieldProblem::new(
+                        "edge_v",
+                        "`edge_u` and `edge_v` must span a rectangle: neither zero nor parallel",
+                    ))
+                }
+            }
+            AreaShape::Sphere { center, radius } => {
+                within_reach("position", center)?;
+                FieldProblem::check_length("radius", radius)
+            }
+        }
+    }
+}
+
 impl Light {
+    /// Checks the rules every light follows, whether a scene file or an edit made it:
+    /// where it is within reach of the camera, a spotlight's cone (`limits::SPOT_ANGLE`, a
+    /// softness from 0 to 1), an area light's surface, an intensity within its limit, and a
+    /// colour within `limits::MAX_RADIANCE`. (A direction is a unit vector by construction.)
+    pub fn check(&self) -> Result<(), FieldProblem> {
+        match self.kind {
+            LightKind::Point { position, falloff } => {
+                within_reach("position", position)?;
+                falloff.check()?;
+            }
+            LightKind::Spot {
+                position,
+                falloff,
+                cone,
+            } => {
+                within_reach("position", position)?;
+                FieldProblem::check_range("angle", cone.angle, &limits::SPOT_ANGLE)?;
+                FieldProblem::check_range("softness", cone.softness, &(0.0..=1.0))?;
+                falloff.check()?;
+            }
+            LightKind::Directional { .. } => {}
+            LightKind::Area { shape, falloff, .. } => {
+                shape.check()?;
+                falloff.check()?;
+            }
+        }
+        FieldProblem::check_color(
+            "color",
+            self.color.to_array(),
+            limits::MAX_RADIANCE,
+            RADIANCE_BOUND,
+        )
+    }
+
     /// A point light at `position` of colour `color`, without falloff.
     pub fn point(position: Vec3, color: Vec3) -> Light {
         Light {
@@ -393,6 +500,88 @@ impl Light {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Each rule of `Light::check` at its limit and just past it; the field named is the
+    /// one at fault.
+    #[test]
+    fn check_holds_each_rule_at_its_limit() {
+        let falloff = Falloff::InverseSquare { intensity: 1.0e30 };
+        let spot = |angle: f32, softness: f32| Light {
+            kind: LightKind::Spot {
+                position: Vec3::splat(1.0e12),
+                falloff,
+                cone: SpotCone::new(Vec3::NEG_Y, angle, softness),
+            },
+            color: Vec3::splat(1.0e4),
+        };
+        let rectangle = |edge_v: Vec3| Light {
+            kind: LightKind::Area {
+                shape: AreaShape::Rectangle {
+                    corner: Vec3::ZERO,
+                    edge_u: Vec3::X,
+                    edge_v,
+                },
+                falloff: Falloff::None,
+                visible: true,
+            },
+            color: Vec3::ONE,
+        };
+        let sphere = |radius: f32| Light {
+            kind: LightKind::Area {
+                shape: AreaShape::Sphere {
+                    center: Vec3::ZERO,
+                    radius,
+                },
+                falloff: Falloff::None,
+                visible: true,
+            },
+            color: Vec3::ONE,
+        };
+        for ok in [
+            spot(180.0, 1.0),
+            spot(0.01, 0.0),
+            rectangle(Vec3::Y),
+            sphere(1.0e-12),
+            sphere(1.0e12),
+            Light::point(Vec3::ZERO, Vec3::ZERO),
+        ] {
+            assert_eq!(ok.check(), Ok(()), "{ok:?}");
+        }
+        let mut far = Light::point(Vec3::new(0.0, 0.0, -2.0e12), Vec3::ONE);
+        let mut bright = Light::point(Vec3::ZERO, Vec3::new(0.0, 1.0e5, 0.0));
+        let mut intense = Light::point(Vec3::ZERO, Vec3::ONE);
+        *intense.falloff_mut().unwrap() = Falloff::InverseSquare { intensity: 2.0e30 };
+        let refused = [
+            ("position", far),
+            ("color", bright),
+            ("intensity", intense),
+            ("angle", spot(180.5, 0.0)),
+            ("angle", spot(0.001, 0.0)),
+            ("softness", spot(30.0, 1.5)),
+            ("edge_v", rectangle(Vec3::X * 2.0)),
+            ("edge_v", rectangle(Vec3::ZERO)),
+            ("edge_v", rectangle(Vec3::new(0.0, 2.0e12, 0.0))),
+            ("radius", sphere(0.0)),
+            ("radius", sphere(f32::NAN)),
+            ("radius", sphere(2.0e12)),
+        ];
+        for (field, light) in refused {
+            let problem = light.check().unwrap_err();
+            assert_eq!(problem.field, field, "{light:?}");
+            assert!(
+                problem.message.contains(&format!("`{field}`")),
+                "{problem:?}"
+            );
+        }
+        far.color = Vec3::NAN;
+        bright.color = Vec3::NAN;
+        assert_eq!(
+            far.check().unwrap_err().field,
+            "position",
+            "the place first"
+        );
+        assert_eq!(bright.check().unwrap_err().field, "color");
+    }
 
     #[test]
     fn sphere_samples_lie_on_the_disc_facing_the_point() {

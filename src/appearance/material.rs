@@ -2,7 +2,7 @@
 
 use super::texture::Texture;
 use crate::limits;
-use crate::messages::{outside_color_range, outside_range};
+use crate::messages::FieldProblem;
 use glam::{Vec3, Vec3A};
 use std::ops::RangeInclusive;
 
@@ -70,40 +70,14 @@ impl Default for Material {
     }
 }
 
-/// A material field that breaks a rule, and what is wrong: the message names the field, in
-/// the words the scene file's messages use.
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
-#[error("{message}")]
-pub struct MaterialProblem {
-    /// The field at fault, as the scene file spells it.
-    pub field: &'static str,
-    /// What is wrong with it.
-    pub message: String,
-}
-
-impl MaterialProblem {
-    fn new(field: &'static str, message: impl Into<String>) -> Self {
-        Self {
-            field,
-            message: message.into(),
-        }
-    }
-}
-
 /// A number of `field` within `range`.
-fn within(field: &'static str, v: f32, range: RangeInclusive<f32>) -> Result<(), MaterialProblem> {
-    match outside_range(field, v, &range) {
-        Some(message) => Err(MaterialProblem::new(field, message)),
-        None => Ok(()),
-    }
+fn within(field: &'static str, v: f32, range: RangeInclusive<f32>) -> Result<(), FieldProblem> {
+    FieldProblem::check_range(field, v, &range)
 }
 
 /// A colour of `field` whose channels lie in [0, hi]; `why` says why hi is the bound.
-fn color_up_to(field: &'static str, c: Vec3, hi: f32, why: &str) -> Result<(), MaterialProblem> {
-    match outside_color_range(field, c.to_array(), hi, why) {
-        Some(message) => Err(MaterialProblem::new(field, message)),
-        None => Ok(()),
-    }
+fn color_up_to(field: &'static str, c: Vec3, hi: f32, why: &str) -> Result<(), FieldProblem> {
+    FieldProblem::check_color(field, c.to_array(), hi, why)
 }
 
 /// Why a surface's colours stop at 1.
@@ -118,7 +92,7 @@ impl Material {
     /// needs an `eta` other than 1, `roughness` a mirror, `absorption` transparency, a
     /// `conductor` a mirror that is not Fresnel glass). The first problem is returned, in
     /// the order of the file's fields.
-    pub fn check(&self) -> Result<(), MaterialProblem> {
+    pub fn check(&self) -> Result<(), FieldProblem> {
         let reflectance = *limits::REFLECTANCE.end();
         if let Texture::Solid(c) = self.texture {
             color_up_to("color", c, reflectance, REFLECTANCE_BOUND)?;
@@ -127,7 +101,7 @@ impl Material {
             within("eta", eta, limits::ETA)?;
         }
         if self.fresnel && !matches!(self.eta, Some(e) if e != 1.0) {
-            return Err(MaterialProblem::new(
+            return Err(FieldProblem::new(
                 "fresnel",
                 "`fresnel = true` needs a refractive material: an `eta` other than 1",
             ));
@@ -136,7 +110,7 @@ impl Material {
         within("transparency", self.transparency, limits::FRACTION)?;
         within("reflectivity", self.reflectivity, limits::FRACTION)?;
         if self.roughness > 0.0 && self.reflectivity == 0.0 && !self.fresnel {
-            return Err(MaterialProblem::new(
+            return Err(FieldProblem::new(
                 "roughness",
                 "`roughness` spreads mirror reflection: it needs a `reflectivity` above 0 \
                  (or `fresnel = true`)",
@@ -144,7 +118,7 @@ impl Material {
         }
         if self.absorption != Vec3::ZERO {
             if self.transparency == 0.0 {
-                return Err(MaterialProblem::new(
+                return Err(FieldProblem::new(
                     "absorption",
                     "`absorption` tints light travelling inside: it needs a `transparency` \
                      above 0",
@@ -159,13 +133,13 @@ impl Material {
         }
         if let Some(c) = self.conductor {
             if self.reflectivity == 0.0 {
-                return Err(MaterialProblem::new(
+                return Err(FieldProblem::new(
                     "conductor",
                     "`conductor` tints mirror reflection: it needs a `reflectivity` above 0",
                 ));
             }
             if self.fresnel {
-                return Err(MaterialProblem::new(
+                return Err(FieldProblem::new(
                     "conductor",
                     "a material is either a `conductor` (a metal) or `fresnel` glass, not both",
                 ));

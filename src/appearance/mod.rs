@@ -11,8 +11,8 @@ pub use background::Background;
 pub use fog::{Fog, FogKind};
 pub use light::{AreaShape, Falloff, Light, LightKind, MAX_FALLOFF_GAIN, SpotCone};
 pub use material::{
-    Material, MaterialProblem, RADIANCE_BOUND, REFLECTANCE_BOUND, fresnel_reflectance, reflect,
-    refract, schlick_reflectance,
+    Material, RADIANCE_BOUND, REFLECTANCE_BOUND, fresnel_reflectance, reflect, refract,
+    schlick_reflectance,
 };
 pub use texture::{ImageTexture, Texture, TextureError, UvTransform};
 

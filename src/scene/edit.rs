@@ -2,12 +2,10 @@
 //! file itself: a bad value is refused with a message, never rendered.
 
 use super::description::Scene;
-use crate::appearance::{Background, Falloff, LightKind, Material, MaterialProblem, SpotCone};
+use crate::appearance::{Background, Falloff, Light, LightKind, Material, SpotCone};
 use crate::camera::Camera;
-use crate::limits::{
-    DEPTH, MAX_COORDINATE, MAX_EXTINCTION, MAX_LIGHT_INTENSITY, MAX_RADIANCE, MIN_LENGTH,
-    SPOT_ANGLE,
-};
+use crate::limits::{DEPTH, MAX_COORDINATE, MAX_EXTINCTION, MAX_RADIANCE, MIN_LENGTH};
+use crate::messages::FieldProblem;
 use glam::Vec3;
 use thiserror::Error;
 
@@ -38,7 +36,7 @@ pub enum EditError {
         /// The object's name.
         object: String,
         /// The field at fault, and what is wrong.
-        problem: MaterialProblem,
+        problem: FieldProblem,
     },
     /// A placement (`translate`, `rotate`, `scale`) that the scene file would refuse: the
     /// entry, and what is wrong.
@@ -94,43 +92,29 @@ impl Scene {
 
     /// Resizes area light `light` about its centre to `size` (`AreaShape::size`).
     pub fn set_light_size(&mut self, light: usize, size: f32) -> Result<(), EditError> {
-        let refuse = |message: String| EditError::Light { light, message };
-        let l = self.light_mut(light)?;
-        let LightKind::Area { shape, .. } = &mut l.kind else {
-            return Err(refuse("only an area light has a size".into()));
-        };
-        let factor = size / shape.size();
-        let resized = shape.resized(factor);
-        let ok = size.is_finite()
-            && size >= *crate::limits::LENGTH.start()
-            && resized.size().is_finite()
-            && resized.center().abs().max_element() as f64 <= MAX_COORDINATE
-            && resized.size() as f64 <= MAX_COORDINATE;
-        if !ok {
-            return Err(refuse(format!(
-                "size {size} must be a number from {MIN_LENGTH:e} to {MAX_COORDINATE:e}"
-            )));
-        }
-        *shape = resized;
-        Ok(())
+        self.edit_light(light, |l| {
+            let LightKind::Area { shape, .. } = &mut l.kind else {
+                return Err("only an area light has a size".into());
+            };
+            if !crate::limits::LENGTH.contains(&size) {
+                return Err(format!(
+                    "size {size} must be a number from {MIN_LENGTH:e} to {MAX_COORDINATE:e}"
+                ));
+            }
+            *shape = shape.resized(size / shape.size());
+            Ok(())
+        })
     }
 
     /// Sets spotlight `light`'s cone: half-angle in degrees and softness (0..1).
     pub fn set_spot(&mut self, light: usize, angle: f32, softness: f32) -> Result<(), EditError> {
-        let refuse = |message: String| EditError::Light { light, message };
-        let l = self.light_mut(light)?;
-        let LightKind::Spot { cone, .. } = &mut l.kind else {
-            return Err(refuse("only a spotlight has a cone".into()));
-        };
-        if !SPOT_ANGLE.contains(&angle) || !(0.0..=1.0).contains(&softness) {
-            return Err(refuse(format!(
-                "angle {angle} must lie in {}..={}° and softness {softness} in 0..=1",
-                SPOT_ANGLE.start(),
-                SPOT_ANGLE.end()
-            )));
-        }
-        *cone = SpotCone::new(cone.direction, angle, softness);
-        Ok(())
+        self.edit_light(light, |l| {
+            let LightKind::Spot { cone, .. } = &mut l.kind else {
+                return Err("only a spotlight has a cone".into());
+            };
+            *cone = SpotCone::new(cone.direction, angle, softness);
+            Ok(())
+        })
     }
 
     /// Sets the fog's density (`Fog::density`), in a scene that has fog.
@@ -169,57 +153,43 @@ impl Scene {
         color: Vec3,
         center: Option<Vec3>,
     ) -> Result<(), EditError> {
-        let refuse = |message: String| EditError::Light {
-            light: index,
-            message,
-        };
-        let l = self.light_mut(index)?;
-        if !(color.is_finite() && color.min_element() >= 0.0 && color.max_element() <= MAX_RADIANCE)
-        {
-            return Err(refuse(format!(
-                "colour {color} must lie in [0, {MAX_RADIANCE}] per channel"
-            )));
-        }
-        let mut moved = *l;
-        moved.color = color;
-        if let (Some(to), Some(from)) = (center, l.center()) {
-            let ok = to.is_finite()
-                && to.abs().max_element() as f64 <= MAX_COORDINATE
-                && (to - from).is_finite();
-            if !ok {
-                return Err(refuse(format!(
-                    "position {to} must lie within {MAX_COORDINATE:e} on every axis"
-                )));
+        self.edit_light(index, |l| {
+            l.color = color;
+            if let (Some(to), Some(from)) = (center, l.center()) {
+                *l = l.moved_by(to - from);
             }
-            moved = moved.moved_by(to - from);
-        }
-        *l = moved;
-        Ok(())
+            Ok(())
+        })
     }
 
     /// Sets the intensity of light `index`, which must fade with inverse-square falloff.
     pub fn set_light_intensity(&mut self, index: usize, intensity: f32) -> Result<(), EditError> {
+        self.edit_light(index, |l| match l.falloff_mut() {
+            None => Err("only a light with falloff has an intensity".into()),
+            Some(Falloff::None) => Err("an intensity needs falloff = \"inverse_square\"".into()),
+            Some(Falloff::InverseSquare { intensity: i }) => {
+                *i = intensity;
+                Ok(())
+            }
+        })
+    }
+
+    /// Light `index` changed by `change` (which refuses a change that does not apply to its
+    /// kind), if the result is one the file takes ([`Light::check`]).
+    fn edit_light(
+        &mut self,
+        index: usize,
+        change: impl FnOnce(&mut Light) -> Result<(), String>,
+    ) -> Result<(), EditError> {
         let refuse = |message: String| EditError::Light {
             light: index,
             message,
         };
         let l = self.light_mut(index)?;
-        let Some(falloff) = l.falloff_mut() else {
-            return Err(refuse("only a light with falloff has an intensity".into()));
-        };
-        if !(0.0..=MAX_LIGHT_INTENSITY).contains(&intensity) {
-            return Err(refuse(format!(
-                "intensity {intensity} must be a number from 0 to {MAX_LIGHT_INTENSITY:e}"
-            )));
-        }
-        match falloff {
-            Falloff::InverseSquare { intensity: i } => *i = intensity,
-            Falloff::None => {
-                return Err(refuse(
-                    "an intensity needs falloff = \"inverse_square\"".into(),
-                ));
-            }
-        }
+        let mut changed = *l;
+        change(&mut changed).map_err(refuse)?;
+        changed.check().map_err(|p| refuse(p.message))?;
+        *l = changed;
         Ok(())
     }
 
@@ -481,6 +451,31 @@ mod tests {
         };
         scene.set_material(0, glass.clone()).unwrap();
         assert_eq!(scene.objects[0].material, glass);
+    }
+
+    /// A light edit is held to `Light::check`, the rule the file's `[[lights]]` follow, in
+    /// the file's words; a refused edit leaves the light as it was.
+    #[test]
+    fn a_light_the_file_would_refuse_is_refused_with_its_words() {
+        let mut s = seed();
+        let before = s.clone();
+        let e = s
+            .set_light_at(0, Vec3::new(0.0, 2.0e4, 0.0), None)
+            .unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "lights[0]: `color` must lie in [0, 10000] per channel (light may be brighter than \
+             white, up to this), got [0.0, 20000.0, 0.0]"
+        );
+        let e = s
+            .set_light_at(0, Vec3::ONE, Some(Vec3::new(0.0, 0.0, -2.0e12)))
+            .unwrap_err();
+        assert!(
+            e.to_string()
+                .starts_with("lights[0]: `position` must hold finite numbers within"),
+            "{e}"
+        );
+        assert_eq!(s, before);
     }
 
     #[test]

@@ -2,10 +2,8 @@
 //! how their light falls off with distance.
 
 use super::error::SceneError;
-use super::fixed_array::Fixed;
 use super::validator::{Item, P3, V3, Validator};
 use crate::appearance::{AreaShape, Falloff, Light, LightKind, SpotCone};
-use crate::limits;
 use crate::messages::{did_you_mean, quoted};
 use glam::Vec3;
 use serde::Deserialize;
@@ -104,11 +102,8 @@ impl Validator<'_> {
                 falloff: self.falloff(at, l)?,
             },
             "spot" => {
-                let (lo, hi) = (*limits::SPOT_ANGLE.start(), *limits::SPOT_ANGLE.end());
                 let angle = l.angle.ok_or_else(|| needs("angle"))?;
-                let angle = self.in_range(at, "angle", angle, lo, hi)?;
-                let softness =
-                    self.in_range(at, "softness", l.softness.unwrap_or(0.0), 0.0, 1.0)?;
+                let softness = l.softness.unwrap_or(0.0);
                 LightKind::Spot {
                     position: position("position", l.position)?,
                     falloff: self.falloff(at, l)?,
@@ -122,31 +117,9 @@ impl Validator<'_> {
                 let corner = position("corner", l.corner)?;
                 let edge = |field: &str, v: Option<V3>| {
                     let v = v.ok_or_else(|| needs(field))?;
-                    let e = self.point(at, field, v)?;
-                    if e.abs().max_element() as f64 > limits::MAX_COORDINATE {
-                        return Err(self.field_error(
-                            at,
-                            field,
-                            format!(
-                                "`{field}` must lie within {:e} on every axis",
-                                limits::MAX_COORDINATE
-                            ),
-                        ));
-                    }
-                    Ok(e)
+                    self.point(at, field, v)
                 };
                 let (edge_u, edge_v) = (edge("edge_u", l.edge_u)?, edge("edge_v", l.edge_v)?);
-                // The two edges must span a parallelogram: neither may be (nearly) zero
-                // or parallel to the other, or its samples would all lie on a line.
-                let area = edge_u.as_dvec3().cross(edge_v.as_dvec3()).length();
-                let lengths = edge_u.as_dvec3().length() * edge_v.as_dvec3().length();
-                if !(area > 1e-6 * lengths && area.sqrt() >= limits::MIN_LENGTH) {
-                    return Err(self.field_error(
-                        at,
-                        "edge_v",
-                        "`edge_u` and `edge_v` must span a rectangle: neither zero nor parallel",
-                    ));
-                }
                 LightKind::Area {
                     shape: AreaShape::Rectangle {
                         corner,
@@ -162,20 +135,25 @@ impl Validator<'_> {
                 LightKind::Area {
                     shape: AreaShape::Sphere {
                         center: position("position", l.position)?,
-                        radius: self.length(at, "radius", radius)?,
+                        radius,
                     },
                     falloff: self.falloff(at, l)?,
                     visible: l.visible.unwrap_or(true),
                 }
             }
         };
-        Ok(Light {
+        // The values' rules are every light's (`Light::check`), edits' too.
+        let light = Light {
             kind,
-            color: self.radiance(at, "color", l.color.unwrap_or(Fixed([1.0; 3])))?,
-        })
+            color: l.color.map_or(Vec3::ONE, Vec3::from),
+        };
+        light
+            .check()
+            .map_err(|p| self.field_error(at, p.field, p.message))?;
+        Ok(light)
     }
 
-    /// A light's `falloff` and `intensity`.
+    /// A light's `falloff` and `intensity` (whose value `Falloff::check` holds).
     pub(super) fn falloff(&self, at: &Item, l: &LightDef) -> Result<Falloff, SceneError> {
         match l.falloff.as_deref().unwrap_or("none") {
             "none" => {
@@ -190,13 +168,7 @@ impl Validator<'_> {
                 Ok(Falloff::None)
             }
             "inverse_square" => Ok(Falloff::InverseSquare {
-                intensity: self.in_range(
-                    at,
-                    "intensity",
-                    l.intensity.unwrap_or(1.0),
-                    0.0,
-                    limits::MAX_LIGHT_INTENSITY,
-                )?,
+                intensity: l.intensity.unwrap_or(1.0),
             }),
             other => Err(self.field_error(
                 at,

@@ -9,7 +9,7 @@ use super::fixed_array::Fixed;
 use super::spans::FieldSpans;
 use crate::appearance::{RADIANCE_BOUND, REFLECTANCE_BOUND};
 use crate::limits;
-use crate::messages::{number, outside_color_range, outside_range};
+use crate::messages::{outside_color_range, outside_length, outside_range};
 use glam::Vec3;
 use std::ops::Range;
 use std::path::PathBuf;
@@ -74,21 +74,10 @@ impl Validator<'_> {
     /// A radius, height or pattern size: positive, and within the lengths the tracer's
     /// squares and products keep finite (limits.rs).
     pub(super) fn length(&self, at: &Item, field: &str, v: f32) -> Result<f32, SceneError> {
-        let v = self.number(at, field, v)?;
-        let problem = if v <= 0.0 {
-            "be greater than zero"
-        } else if v < *limits::LENGTH.start() {
-            &format!("be at least {:e}", limits::MIN_LENGTH)
-        } else if v > *limits::LENGTH.end() {
-            &format!("be at most {:e}", limits::MAX_COORDINATE)
-        } else {
-            return Ok(v);
-        };
-        Err(self.field_error(
-            at,
-            field,
-            format!("`{field}` must {problem}, got {}", number(v)),
-        ))
+        match outside_length(field, v) {
+            Some(message) => Err(self.field_error(at, field, message)),
+            None => Ok(v),
+        }
     }
 
     pub(super) fn in_range(
