@@ -2,7 +2,8 @@
 //! prism's. A file placed by many entries is read and built once (instancing).
 
 use super::error::SceneError;
-use super::obj::{LineError, MtlMaterial, parse_mtl, parse_obj};
+use super::mtl::{MtlMaterial, parse_mtl};
+use super::obj::{LineError, parse_obj};
 use super::placement::Placement;
 use super::read_cache::ReadMesh;
 use super::textures::{BudgetError, Images};

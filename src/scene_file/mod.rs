@@ -21,6 +21,7 @@ mod lights;
 mod load;
 mod materials;
 mod meshes;
+mod mtl;
 mod obj;
 mod placement;
 mod read_cache;
