@@ -56,7 +56,7 @@ const HOSTILE: [&str; 24] = [
 ];
 
 /// Text the fuzzer's dictionary also offers: table headers and keys out of place.
-const FRAGMENTS: [&str; 29] = [
+const FRAGMENTS: [&str; 30] = [
     "[[spheres]]\ncenter = [0, 0, -5]\nradius = 1\n",
     "[[polygons]]\nvertices = [[0, 0, 0], [1, 0, 0], [1, 1e-7, 0]]\n",
     "[[tetrahedra]]\nvertices = [[0,0,0],[1,0,0],[0,1,0],[0,0,1e-9]]\n",
@@ -88,6 +88,8 @@ const FRAGMENTS: [&str; 29] = [
     "position = [1, 1, 1\n",
     "name = \"[,,]\" # [,,\n",
     "[[boxes]]\nmin = [-1, -1, -6]\nmax = [1, 0, -4]\n[[boxes]]\nmin = [-1, 0, -6]\nmax = [1, 1, -4]\nmaterial = \"x\"\n",
+    // A capsule at the thinness rule's edge, far out, turned.
+    "[[capsules]]\nbase = [0, 1e11, -30]\nradius = 1e-12\nheight = 4.77e-6\nrotate = [0, 0, 90]\n",
     "[animation]\nframes = 2\n[[animation.track]]\ntarget = \"spheres[0]\"\nfield = \"radius\"\nkeys = [{ frame = 0, value = 1 }, { frame = 1e300, value = 2 }]\n",
 ];
 

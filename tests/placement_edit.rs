@@ -31,7 +31,7 @@ const PYRAMID_MTL: &str = "newmtl stone\nKd 0.7 0.6 0.5\nnewmtl base\nKd 0.2 0.2
 
 /// One entry of every kind, each written without a placement and then with `placements[i]`
 /// (its lines appended to entry i).
-const ENTRIES: [&str; 11] = [
+const ENTRIES: [&str; 12] = [
     "[[spheres]]\nname = \"ball\"\ncenter = [1, 0.5, -2]\nradius = 0.75\n",
     "[[cylinders]]\nbase = [-2, -1, -3]\nradius = 0.5\nheight = 2\n",
     "[[polygons]]\nvertices = [[0, -1, -6], [2, -1, -6], [2, 1, -6.5], [0, 1, -6.5]]\n",
@@ -43,6 +43,7 @@ const ENTRIES: [&str; 11] = [
     "[[cones]]\nbase = [2, -1, -7]\nradius = 0.5\ntop_radius = 0.1\nheight = 1.5\n",
     "[[tori]]\ncenter = [-2, 0, -6]\nmajor_radius = 0.8\nminor_radius = 0.2\n",
     "[[meshes]]\nname = \"pyramid\"\npath = \"pyramid.obj\"\n",
+    "[[capsules]]\nbase = [-3.5, 1, -7]\nradius = 0.3\nheight = 1\n",
 ];
 
 const HEADER: &str = "\

@@ -21,7 +21,7 @@ const W: u32 = 320;
 const H: u32 = 240;
 
 /// Each object as prism's scene file and POV-Ray's scene language write it.
-const OBJECTS: [(&str, &str); 8] = [
+const OBJECTS: [(&str, &str); 9] = [
     (
         "[[tori]]\ncenter = [0, 0, 0]\nmajor_radius = 1.2\nminor_radius = 0.35\n\
          rotate = [60, 0, 30]\ntranslate = [-1.6, 0.9, 0]\nmaterial = \"red\"\n",
@@ -61,6 +61,13 @@ const OBJECTS: [(&str, &str); 8] = [
          rotate = [0, 0, 25]\ntranslate = [-3.0, -1.0, 0.5]\nmaterial = \"green\"\n",
         "sphere { <0, 0, 0>, 0.5 pigment { rgb <0, 1, 0> } finish { F } \
          scale <1.6, 0.6, 1> rotate <0, 0, 25> translate <-3.0, -1.0, 0.5> }",
+    ),
+    (
+        "[[capsules]]\nbase = [0, 0, 0]\nradius = 0.35\nheight = 1.0\nrotate = [30, 0, -70]\n\
+         translate = [-3.4, 2.4, -2.0]\nmaterial = \"blue\"\n",
+        "merge { cylinder { <0, 0, 0>, <0, 1, 0>, 0.35 open } sphere { <0, 0, 0>, 0.35 } \
+         sphere { <0, 1, 0>, 0.35 } pigment { rgb <0, 0, 1> } finish { F } \
+         rotate <30, 0, -70> translate <-3.4, 2.4, -2.0> }",
     ),
     (
         "[[planes]]\npoint = [0, -2.5, 0]\nnormal = [0, 1, 0.05]\nmaterial = \"gray\"\n",

@@ -309,7 +309,7 @@ fn a_tori_scene_renders_the_same_at_every_scale() {
 
 #[test]
 fn bad_shapes_are_refused_with_their_line_and_field() {
-    let cases: [(&str, &str); 13] = [
+    let cases: [(&str, &str); 16] = [
         (
             "[[boxes]]\nmin = [0, 0, 0]\nmax = [1, 0, 1]\n",
             "`min` below `max` on every axis",
@@ -358,6 +358,18 @@ fn bad_shapes_are_refused_with_their_line_and_field() {
         (
             "[[tori]]\ncenter = [0, 0, 0]\nmajor_radius = 2\nminor_radius = 1\nscale = [1, 0, 1]\n",
             "`scale` must be greater than zero",
+        ),
+        (
+            "[[capsules]]\nbase = [0, 0, 0]\nradius = 0\nheight = 1\n",
+            "`radius` must be greater than zero",
+        ),
+        (
+            "[[capsules]]\nbase = [0, 0, 0]\nradius = 1\nheight = -2\n",
+            "`height` must be greater than zero",
+        ),
+        (
+            "[[capsules]]\nbase = [0, 0, 0]\nradius = 1\nheight = 1\ncaps = false\n",
+            "unknown field `caps`",
         ),
     ];
     for (entry, words) in cases {

@@ -91,7 +91,7 @@ impl Cone {
         t_min: f32,
         t_max: f32,
     ) -> Option<(f32, CylinderPart)> {
-        nearest_candidate(self.candidates(ray), t_min, t_max)
+        nearest_candidate(&self.candidates(ray), t_min, t_max)
     }
 
     /// How many times the segment (0, t_max) crosses the surface.

@@ -50,7 +50,7 @@ impl Cylinder {
     /// Every place the ray's line meets the cylinder, as (t, part); at most four
     /// candidates of which at most two are real, unordered.
     #[inline]
-    fn candidates(&self, ray: &Ray) -> [(f32, CylinderPart); 4] {
+    pub(super) fn candidates(&self, ray: &Ray) -> [(f32, CylinderPart); 4] {
         let none = (f32::NAN, CylinderPart::Side);
         let mut out = [none; 4];
         let f = Vec2::new(ray.origin.x - self.base.x, ray.origin.z - self.base.z);
@@ -105,7 +105,7 @@ impl Cylinder {
         t_min: f32,
         t_max: f32,
     ) -> Option<(f32, CylinderPart)> {
-        nearest_candidate(self.candidates(ray), t_min, t_max)
+        nearest_candidate(&self.candidates(ray), t_min, t_max)
     }
 
     /// How many times the segment (0, t_max) crosses the surface.
@@ -173,11 +173,11 @@ impl Cylinder {
     }
 }
 
-/// How many of a cylinder's or cone's candidates lie in (0, t_max). A line crosses a closed
-/// one at most twice (one through a rim may count a side and a cap both), and an open one's
-/// side alone at most twice too.
+/// How many of a cylinder's, cone's or capsule's candidates lie in (0, t_max). A line
+/// crosses a closed one at most twice (one through a rim or a seam may count two parts
+/// both), and an open one's side alone at most twice too.
 #[inline]
-pub(super) fn crossing_count(candidates: &[(f32, CylinderPart); 4], t_max: f32) -> u32 {
+pub(super) fn crossing_count(candidates: &[(f32, CylinderPart)], t_max: f32) -> u32 {
     candidates
         .iter()
         .filter(|(t, _)| *t > 0.0 && *t < t_max)
@@ -185,15 +185,16 @@ pub(super) fn crossing_count(candidates: &[(f32, CylinderPart); 4], t_max: f32) 
         .min(2) as u32
 }
 
-/// The nearest of a cylinder's or cone's candidates (NaN for none) in (t_min, t_max).
+/// The nearest of a cylinder's, cone's or capsule's candidates (NaN for none) in
+/// (t_min, t_max).
 #[inline]
 pub(super) fn nearest_candidate(
-    candidates: [(f32, CylinderPart); 4],
+    candidates: &[(f32, CylinderPart)],
     t_min: f32,
     t_max: f32,
 ) -> Option<(f32, CylinderPart)> {
     let mut best: Option<(f32, CylinderPart)> = None;
-    for (t, part) in candidates {
+    for &(t, part) in candidates {
         if t > t_min && t < t_max && best.is_none_or(|(bt, _)| t < bt) {
             best = Some((t, part));
         }

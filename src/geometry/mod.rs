@@ -2,6 +2,7 @@
 //! layer's job (accel/).
 
 mod aabb;
+mod capsule;
 mod cone;
 mod cuboid;
 mod cylinder;
@@ -17,6 +18,7 @@ mod triangle;
 mod triangle_group;
 
 pub use aabb::Aabb;
+pub use capsule::Capsule;
 pub use cone::Cone;
 pub use cuboid::{Cuboid, CuboidFace};
 pub use cylinder::{Cylinder, CylinderPart};

@@ -1,6 +1,7 @@
 //! The closed set of primitive shapes, dispatched by `match` (no vtables on the hot path).
 
 use super::aabb::Aabb;
+use super::capsule::Capsule;
 use super::cone::Cone;
 use super::cuboid::{Cuboid, CuboidFace};
 use super::cylinder::{Cylinder, CylinderPart};
@@ -28,6 +29,8 @@ pub enum Shape {
     Cone(Cone),
     /// A torus.
     Torus(Torus),
+    /// A capsule: an upright side closed by hemispheres.
+    Capsule(Capsule),
 }
 
 /// What the intersection test found; enough to rebuild the surface point later, once, for
@@ -69,6 +72,11 @@ pub enum HitDetail {
     },
     /// A torus.
     Torus,
+    /// A capsule's side (`Side`) or one of its ends (`Bottom`, `Top`).
+    Capsule {
+        /// Which.
+        part: CylinderPart,
+    },
     /// Triangle `triangle` of a mesh, at barycentric weights `b`.
     Mesh {
         /// The triangle's index in the mesh.
@@ -84,7 +92,9 @@ impl HitDetail {
     #[inline]
     pub fn part(&self) -> u32 {
         match self {
-            HitDetail::Cylinder { part } | HitDetail::Cone { part } => *part as u32,
+            HitDetail::Cylinder { part }
+            | HitDetail::Cone { part }
+            | HitDetail::Capsule { part } => *part as u32,
             HitDetail::Cuboid { face } => face.axis as u32 * 2 + face.upper as u32,
             _ => 0,
         }
@@ -152,6 +162,13 @@ impl Shape {
                 t,
                 detail: HitDetail::Torus,
             }),
+            Shape::Capsule(c) => {
+                c.intersect_after(&q.ray, t_min, t_max)
+                    .map(|(t, part)| ShapeHit {
+                        t,
+                        detail: HitDetail::Capsule { part },
+                    })
+            }
         }
     }
 
@@ -166,6 +183,7 @@ impl Shape {
             Shape::Disc(d) => d.intersect_after(&q.ray, 0.0, t_max).is_some() as u32,
             Shape::Cone(c) => c.crossings(&q.ray, t_max),
             Shape::Torus(tor) => tor.crossings(&q.ray, t_max),
+            Shape::Capsule(c) => c.crossings(&q.ray, t_max),
         }
     }
 
@@ -196,6 +214,7 @@ impl Shape {
             (Shape::Disc(d), _) => at(d.surface(&q.ray, hit.t)),
             (Shape::Cone(c), HitDetail::Cone { part }) => at(c.surface(&q.ray, hit.t, part)),
             (Shape::Torus(tor), _) => at(tor.surface(&q.ray, hit.t)),
+            (Shape::Capsule(c), HitDetail::Capsule { part }) => at(c.surface(&q.ray, hit.t, part)),
             (shape, detail) => unreachable!("hit {detail:?} does not belong to {shape:?}"),
         }
     }
@@ -211,6 +230,7 @@ impl Shape {
             (Shape::Disc(d), _) => d.uv(surface.point),
             (Shape::Cone(c), HitDetail::Cone { part }) => c.uv(surface.point, part),
             (Shape::Torus(tor), _) => tor.uv(surface.point),
+            (Shape::Capsule(c), _) => c.uv(surface.point),
             (shape, detail) => unreachable!("hit {detail:?} does not belong to {shape:?}"),
         }
     }
@@ -225,6 +245,7 @@ impl Shape {
             Shape::Disc(d) => d.bounds(),
             Shape::Cone(c) => c.bounds(),
             Shape::Torus(tor) => tor.bounds(),
+            Shape::Capsule(c) => c.bounds(),
         }
     }
 
@@ -232,7 +253,7 @@ impl Shape {
     /// that starts inside meets it before anything beyond it.
     pub fn is_convex_solid(&self) -> bool {
         match self {
-            Shape::Sphere(_) | Shape::Cuboid(_) => true,
+            Shape::Sphere(_) | Shape::Cuboid(_) | Shape::Capsule(_) => true,
             Shape::Cylinder(c) => c.caps,
             Shape::Cone(c) => c.caps,
             Shape::Triangle(_) | Shape::Disc(_) | Shape::Torus(_) => false,

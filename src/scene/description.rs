@@ -4,7 +4,9 @@
 use crate::appearance::Material;
 use crate::appearance::{Background, Fog, Light};
 use crate::camera::Camera;
-use crate::geometry::{Aabb, Cone, Cuboid, Cylinder, Disc, Mesh, Shape, Sphere, Torus, Transform};
+use crate::geometry::{
+    Aabb, Capsule, Cone, Cuboid, Cylinder, Disc, Mesh, Shape, Sphere, Torus, Transform,
+};
 use glam::{Affine3A, DVec3, Quat, Vec3};
 use std::sync::Arc;
 
@@ -129,6 +131,16 @@ pub enum ShapeDesc {
         /// Whether both ends are closed.
         caps: bool,
     },
+    /// Along +y: the points within `radius` of the segment from `base` up `height` (a
+    /// side closed by hemispheres).
+    Capsule {
+        /// The centre of its bottom hemisphere.
+        base: Vec3,
+        /// Its radius.
+        radius: f32,
+        /// The length of its axis segment.
+        height: f32,
+    },
     /// A solid axis-aligned box.
     Cuboid {
         /// Its corner with the smallest coordinates.
@@ -213,7 +225,9 @@ impl ShapeDesc {
     pub fn origin(&self) -> Vec3 {
         match self {
             ShapeDesc::Sphere { center, .. } => *center,
-            ShapeDesc::Cylinder { base, .. } | ShapeDesc::Cone { base, .. } => *base,
+            ShapeDesc::Cylinder { base, .. }
+            | ShapeDesc::Cone { base, .. }
+            | ShapeDesc::Capsule { base, .. } => *base,
             ShapeDesc::Cuboid { min, .. } => *min,
             ShapeDesc::Disc { center, .. } | ShapeDesc::Torus { center, .. } => *center,
             ShapeDesc::Plane { point, .. } => *point,
@@ -239,6 +253,11 @@ impl ShapeDesc {
                 height,
                 caps,
             } => Shape::Cylinder(Cylinder::new(base, radius, height).with_caps(caps)),
+            ShapeDesc::Capsule {
+                base,
+                radius,
+                height,
+            } => Shape::Capsule(Capsule::new(base, radius, height)),
             ShapeDesc::Cuboid { min, max } => Shape::Cuboid(Cuboid::new(min, max)),
             ShapeDesc::Disc {
                 center,
@@ -310,6 +329,15 @@ impl ShapeDesc {
                 height: height * scale,
                 caps: *caps,
             },
+            ShapeDesc::Capsule {
+                base,
+                radius,
+                height,
+            } => ShapeDesc::Capsule {
+                base: p(*base),
+                radius: radius * scale,
+                height: height * scale,
+            },
             ShapeDesc::Cuboid { min, max } => ShapeDesc::Cuboid {
                 min: p(*min),
                 max: p(*max),
@@ -379,6 +407,7 @@ impl ShapeDesc {
             ShapeDesc::Mesh { .. } | ShapeDesc::Torus { .. } => false,
             ShapeDesc::Transformed { shape, .. } => shape.is_convex(),
             ShapeDesc::Sphere { .. }
+            | ShapeDesc::Capsule { .. }
             | ShapeDesc::Cuboid { .. }
             | ShapeDesc::Disc { .. }
             | ShapeDesc::Plane { .. }

@@ -154,6 +154,7 @@ impl Geometry {
                 }
                 shape @ (ShapeDesc::Sphere { .. }
                 | ShapeDesc::Cylinder { .. }
+                | ShapeDesc::Capsule { .. }
                 | ShapeDesc::Cuboid { .. }
                 | ShapeDesc::Disc { .. }
                 | ShapeDesc::Cone { .. }

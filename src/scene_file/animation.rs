@@ -28,7 +28,7 @@ macro_rules! table_names {
 
 /// The tables of the scene file that hold objects, each an array of tables, in the file's
 /// order (kinds.rs).
-pub const OBJECT_TABLES: [&str; 11] = object_kinds!(table_names);
+pub const OBJECT_TABLES: &[&str] = &object_kinds!(table_names);
 
 /// How a track moves between its keys.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

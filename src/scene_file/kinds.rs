@@ -21,6 +21,7 @@ macro_rules! object_kinds {
             planes: $crate::scene_file::shapes::PlaneDef, shape plane;
             cones: $crate::scene_file::shapes::ConeDef, shape cone;
             tori: $crate::scene_file::shapes::TorusDef, shape torus;
+            capsules: $crate::scene_file::shapes::CapsuleDef, shape capsule;
         }
     };
 }

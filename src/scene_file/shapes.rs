@@ -48,6 +48,21 @@ pub(super) struct CylinderDef {
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
+pub(super) struct CapsuleDef {
+    pub(super) name: Option<String>,
+    pub(super) base: P3,
+    pub(super) radius: f32,
+    pub(super) height: f32,
+    pub(super) material: Option<String>,
+    pub(super) shadow: Option<bool>,
+    pub(super) translate: Option<P3>,
+    pub(super) rotate: Option<V3>,
+    /// A number or [sx, sy, sz].
+    pub(super) scale: Option<toml::Value>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
 pub(super) struct PolygonDef {
     pub(super) name: Option<String>,
     pub(super) vertices: Vec<P3>,
@@ -122,15 +137,8 @@ impl Validator<'_> {
         } else {
             d.base
         };
-        let relative_base = self.position(at, "base", base)?;
-        let height = self.length(at, "height", (d.height as f64 * b) as f32)?;
-        // The top cap is a position too.
-        let mut top = base;
-        top[1] += height as f64;
-        let top = self.position(at, "height", top)?;
-        let distance = relative_base.abs().max(top.abs()).max_element();
-        let extent = top.y - relative_base.y;
-        self.resolvable(at, "height", "the cylinder's height", extent, distance)?;
+        let (relative_base, height) =
+            self.upright_axis(at, base, d.height as f64 * b, "the cylinder's height")?;
         let cylinder = ShapeDesc::Cylinder {
             base: relative_base,
             radius: self.length(at, "radius", (d.radius as f64 * a) as f32)?,
@@ -140,6 +148,55 @@ impl Validator<'_> {
         match upright {
             Some(_) => Ok(cylinder),
             None => self.transformed(at, cylinder, placement),
+        }
+    }
+
+    /// An upright shape's axis from `base` up `height` (`what` names it in messages): the
+    /// base relative to the scene's origin and the height, checked as lengths and positions
+    /// (the top end is a position too) and as an extent single precision resolves there.
+    fn upright_axis(
+        &self,
+        at: &Item,
+        base: P3,
+        height: f64,
+        what: &str,
+    ) -> Result<(Vec3, f32), SceneError> {
+        let relative_base = self.position(at, "base", base)?;
+        let height = self.length(at, "height", height as f32)?;
+        let mut top = base;
+        top[1] += height as f64;
+        let top = self.position(at, "height", top)?;
+        let distance = relative_base.abs().max(top.abs()).max_element();
+        let extent = top.y - relative_base.y;
+        self.resolvable(at, "height", what, extent, distance)?;
+        Ok((relative_base, height))
+    }
+
+    /// A `[[capsules]]` entry, placed: by its own parameters while it stays upright and is
+    /// scaled evenly (its ends stay hemispheres), else under a transform.
+    pub(super) fn capsule(
+        &self,
+        at: &Item,
+        d: &CapsuleDef,
+        placement: &Placement,
+    ) -> Result<ShapeDesc, SceneError> {
+        let even = placement.upright_scale().filter(|(a, b)| a == b);
+        let s = even.map_or(1.0, |(a, _)| a);
+        let base = if even.is_some() {
+            placement.point(d.base)
+        } else {
+            d.base
+        };
+        let (relative_base, height) =
+            self.upright_axis(at, base, d.height as f64 * s, "the capsule's height")?;
+        let capsule = ShapeDesc::Capsule {
+            base: relative_base,
+            radius: self.length(at, "radius", (d.radius as f64 * s) as f32)?,
+            height,
+        };
+        match even {
+            Some(_) => Ok(capsule),
+            None => self.transformed(at, capsule, placement),
         }
     }
 
