@@ -85,9 +85,15 @@ pub const FRACTION: RangeInclusive<f32> = 0.0..=1.0;
 /// at most the light it receives.
 pub const REFLECTANCE: RangeInclusive<f32> = 0.0..=1.0;
 
+/// Why a reflectance stops at 1, as messages say it.
+pub const REFLECTANCE_BOUND: &str = "a surface reflects at most all the light";
+
 /// Radiance-like colours (a light's colour, the background, the ambient light) may be
 /// brighter than white (high dynamic range), up to this per channel.
 pub const MAX_RADIANCE: f32 = 1.0e4;
+
+/// Why a radiance may pass 1, as messages say it.
+pub const RADIANCE_BOUND: &str = "light may be brighter than white, up to this";
 
 /// An inverse-square light's intensity (its colour's multiplier one scene unit away): enough
 /// for a light 10¹² units off (the farthest position) to light a surface, and the gain near

@@ -1,7 +1,6 @@
 //! Light sources: what kind of light, how bright, how it falls off, and for lights with an
 //! area, where on them a shadow ray ends.
 
-use super::material::RADIANCE_BOUND;
 use crate::geometry::{Ray, Sphere};
 use crate::limits::{self, MAX_COORDINATE, MIN_LENGTH};
 use crate::messages::FieldProblem;
@@ -388,7 +387,7 @@ impl Light {
             "color",
             self.color.to_array(),
             limits::MAX_RADIANCE,
-            RADIANCE_BOUND,
+            limits::RADIANCE_BOUND,
         )
     }
 

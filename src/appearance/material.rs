@@ -4,7 +4,6 @@ use super::texture::Texture;
 use crate::limits;
 use crate::messages::FieldProblem;
 use glam::{Vec3, Vec3A};
-use std::ops::RangeInclusive;
 
 /// A Whitted material, as in the seed: Phong local shading, plus a mirror term and a
 /// transmitted term that may bend by Snell's law.
@@ -70,22 +69,6 @@ impl Default for Material {
     }
 }
 
-/// A number of `field` within `range`.
-fn within(field: &'static str, v: f32, range: RangeInclusive<f32>) -> Result<(), FieldProblem> {
-    FieldProblem::check_range(field, v, &range)
-}
-
-/// A colour of `field` whose channels lie in [0, hi]; `why` says why hi is the bound.
-fn color_up_to(field: &'static str, c: Vec3, hi: f32, why: &str) -> Result<(), FieldProblem> {
-    FieldProblem::check_color(field, c.to_array(), hi, why)
-}
-
-/// Why a surface's colours stop at 1.
-pub const REFLECTANCE_BOUND: &str = "a surface reflects at most all the light";
-
-/// Why light's colours may pass 1.
-pub const RADIANCE_BOUND: &str = "light may be brighter than white, up to this";
-
 impl Material {
     /// Checks the rules every material follows, whether a scene file or an edit made it:
     /// each number within its limit (limits.rs), and the rules between fields (`fresnel`
@@ -95,10 +78,15 @@ impl Material {
     pub fn check(&self) -> Result<(), FieldProblem> {
         let reflectance = *limits::REFLECTANCE.end();
         if let Texture::Solid(c) = self.texture {
-            color_up_to("color", c, reflectance, REFLECTANCE_BOUND)?;
+            FieldProblem::check_color(
+                "color",
+                c.to_array(),
+                reflectance,
+                limits::REFLECTANCE_BOUND,
+            )?;
         }
         if let Some(eta) = self.eta {
-            within("eta", eta, limits::ETA)?;
+            FieldProblem::check_range("eta", eta, &limits::ETA)?;
         }
         if self.fresnel && !matches!(self.eta, Some(e) if e != 1.0) {
             return Err(FieldProblem::new(
@@ -106,9 +94,9 @@ impl Material {
                 "`fresnel = true` needs a refractive material: an `eta` other than 1",
             ));
         }
-        within("roughness", self.roughness, limits::ROUGHNESS)?;
-        within("transparency", self.transparency, limits::FRACTION)?;
-        within("reflectivity", self.reflectivity, limits::FRACTION)?;
+        FieldProblem::check_range("roughness", self.roughness, &limits::ROUGHNESS)?;
+        FieldProblem::check_range("transparency", self.transparency, &limits::FRACTION)?;
+        FieldProblem::check_range("reflectivity", self.reflectivity, &limits::FRACTION)?;
         if self.roughness > 0.0 && self.reflectivity == 0.0 && !self.fresnel {
             return Err(FieldProblem::new(
                 "roughness",
@@ -124,9 +112,9 @@ impl Material {
                      above 0",
                 ));
             }
-            color_up_to(
+            FieldProblem::check_color(
                 "absorption",
-                self.absorption,
+                self.absorption.to_array(),
                 limits::MAX_EXTINCTION,
                 "per scene unit",
             )?;
@@ -144,18 +132,23 @@ impl Material {
                     "a material is either a `conductor` (a metal) or `fresnel` glass, not both",
                 ));
             }
-            color_up_to("conductor", c, reflectance, REFLECTANCE_BOUND)?;
+            FieldProblem::check_color(
+                "conductor",
+                c.to_array(),
+                reflectance,
+                limits::REFLECTANCE_BOUND,
+            )?;
         }
         let phong = 0.0..=limits::MAX_PHONG_FACTOR;
-        within("ambient", self.ambient, phong.clone())?;
-        within("diffuse", self.diffuse, phong.clone())?;
-        within("specular", self.specular, phong)?;
-        within("shininess", self.shininess, 0.0..=limits::MAX_SHININESS)?;
-        color_up_to(
+        FieldProblem::check_range("ambient", self.ambient, &phong)?;
+        FieldProblem::check_range("diffuse", self.diffuse, &phong)?;
+        FieldProblem::check_range("specular", self.specular, &phong)?;
+        FieldProblem::check_range("shininess", self.shininess, &(0.0..=limits::MAX_SHININESS))?;
+        FieldProblem::check_color(
             "emission",
-            self.emission,
+            self.emission.to_array(),
             limits::MAX_RADIANCE,
-            RADIANCE_BOUND,
+            limits::RADIANCE_BOUND,
         )
     }
 

@@ -10,10 +10,7 @@ mod texture;
 pub use background::Background;
 pub use fog::{Fog, FogKind};
 pub use light::{AreaShape, Falloff, Light, LightKind, MAX_FALLOFF_GAIN, SpotCone};
-pub use material::{
-    Material, RADIANCE_BOUND, REFLECTANCE_BOUND, fresnel_reflectance, reflect, refract,
-    schlick_reflectance,
-};
+pub use material::{Material, fresnel_reflectance, reflect, refract, schlick_reflectance};
 pub use texture::{ImageTexture, Texture, TextureError, UvTransform};
 
 use glam::{Vec3, Vec3A};

@@ -119,19 +119,18 @@ impl Capsule {
             max: self.base + Vec3::new(r, self.height + r, r),
         }
     }
-
-    /// The distance from `p` to the capsule's axis segment (for tests).
-    #[cfg(test)]
-    fn distance_to_axis(&self, p: Vec3A) -> f32 {
-        let rel = Vec3::from(p) - self.base;
-        let y = rel.y.clamp(0.0, self.height);
-        glam::Vec2::new(rel.x, rel.z).length().hypot(rel.y - y)
-    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The distance from `p` to `c`'s axis segment.
+    fn distance_to_axis(c: &Capsule, p: Vec3A) -> f32 {
+        let rel = Vec3::from(p) - c.base;
+        let y = rel.y.clamp(0.0, c.height);
+        glam::Vec2::new(rel.x, rel.z).length().hypot(rel.y - y)
+    }
 
     fn pill() -> Capsule {
         Capsule::new(Vec3::new(0.0, -1.0, -10.0), 1.0, 2.0)
@@ -165,7 +164,7 @@ mod tests {
             assert_eq!(hit, part, "{ray:?}");
             assert!((t - t_expected).abs() < 1e-5, "{t} vs {t_expected}");
             let (p, n, e) = c.surface(&ray, t, hit);
-            assert!((c.distance_to_axis(p) - 1.0).abs() < 1e-5);
+            assert!((distance_to_axis(&c, p) - 1.0).abs() < 1e-5);
             assert!((n.length() - 1.0).abs() < 1e-6 && n.dot(ray.dir) < 0.0);
             assert!(e.max_element() < 1e-4);
             let (u, v) = c.uv(p);
@@ -185,7 +184,7 @@ mod tests {
         assert_eq!(c.crossings(&inside, f32::INFINITY), 1);
         let (t, part) = c.intersect_after(&inside, 0.0, f32::INFINITY).unwrap();
         let (p, n, _) = c.surface(&inside, t, part);
-        assert!((c.distance_to_axis(p) - 1.0).abs() < 1e-5 && n.dot(inside.dir) > 0.0);
+        assert!((distance_to_axis(&c, p) - 1.0).abs() < 1e-5 && n.dot(inside.dir) > 0.0);
         let beside = Ray::new(Vec3::new(1.01, 0.0, 0.0), -Vec3::Z);
         assert_eq!(c.crossings(&beside, f32::INFINITY), 0);
         assert!(c.intersect_after(&beside, 0.0, f32::INFINITY).is_none());

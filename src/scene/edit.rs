@@ -4,7 +4,9 @@
 use super::description::Scene;
 use crate::appearance::{Background, Falloff, Light, LightKind, Material, SpotCone};
 use crate::camera::Camera;
-use crate::limits::{DEPTH, MAX_COORDINATE, MAX_EXTINCTION, MAX_RADIANCE, MIN_LENGTH};
+use crate::limits::{
+    DEPTH, MAX_COORDINATE, MAX_EXTINCTION, MAX_RADIANCE, MIN_LENGTH, RADIANCE_BOUND,
+};
 use crate::messages::FieldProblem;
 use glam::Vec3;
 use thiserror::Error;
@@ -47,14 +49,10 @@ pub enum EditError {
         /// What is wrong.
         message: String,
     },
-    /// A scene-wide value (background, ambient light, depth) out of range.
-    #[error("render: `{field}` {message}")]
-    Render {
-        /// The field at fault.
-        field: &'static str,
-        /// What is wrong.
-        message: String,
-    },
+    /// A scene-wide value (background, ambient light, depth) out of range, in the scene
+    /// file's words.
+    #[error("render: {0}")]
+    Render(FieldProblem),
 }
 
 impl Scene {
@@ -210,14 +208,14 @@ impl Scene {
     /// Sets the most secondary bounces along one path.
     pub fn set_max_depth(&mut self, depth: u32) -> Result<(), EditError> {
         if !DEPTH.contains(&depth) {
-            return Err(EditError::Render {
-                field: "max_depth",
-                message: format!(
-                    "{depth} must be a whole number from {} to {}",
+            return Err(EditError::Render(FieldProblem::new(
+                "max_depth",
+                format!(
+                    "`max_depth` must lie in {}..={}, got {depth}",
                     DEPTH.start(),
                     DEPTH.end()
                 ),
-            });
+            )));
         }
         self.render.max_depth = depth;
         Ok(())
@@ -246,14 +244,8 @@ impl Scene {
 
 /// A background or ambient colour: radiance, brighter than white allowed within reason.
 fn check_radiance(field: &'static str, c: Vec3) -> Result<(), EditError> {
-    if c.is_finite() && c.min_element() >= 0.0 && c.max_element() <= MAX_RADIANCE {
-        Ok(())
-    } else {
-        Err(EditError::Render {
-            field,
-            message: format!("{c} must lie in [0, {MAX_RADIANCE}] per channel"),
-        })
-    }
+    FieldProblem::check_color(field, c.to_array(), MAX_RADIANCE, RADIANCE_BOUND)
+        .map_err(EditError::Render)
 }
 
 /// Checks a camera set by hand, by the rules every camera follows ([`Camera::check`]).

@@ -10,7 +10,7 @@
 //! along the shortest arc between keys (quaternion slerp); `linear` and `step` do what
 //! they say (a linear `rotate` spins through every degree between its keys: a turntable).
 
-use super::error::{SceneError, line_column};
+use super::error::{SceneError, line_column, syntax_error};
 use super::kinds::object_kinds;
 use crate::limits;
 use glam::{DQuat, EulerRot};
@@ -124,12 +124,7 @@ impl Animation {
                     let e = toml::from_str::<WithAnimation>(source)
                         .err()
                         .expect("it failed");
-                    Err(super::error::syntax_error(
-                        source,
-                        path,
-                        e.span(),
-                        e.message(),
-                    ))
+                    Err(syntax_error(source, path, e.span(), e.message()))
                 }
                 _ => Ok(None),
             };

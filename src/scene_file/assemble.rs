@@ -9,6 +9,7 @@ use super::error::SceneError;
 use super::kinds::object_kinds;
 use super::lights::LightDef;
 use super::materials::MaterialDef;
+use super::meshes::MeshFiles;
 use super::placement::Placement;
 use super::render_table::{FogDef, RenderDef};
 
@@ -154,7 +155,7 @@ impl Validator<'_> {
             ($table:ident mesh) => {};
         }
         object_kinds!(shape_entries);
-        let mut mesh_files = super::meshes::MeshFiles::default();
+        let mut mesh_files = MeshFiles::default();
         for (i, m) in file.meshes.iter().enumerate() {
             let d = m.get_ref();
             let label = entry_label("meshes", i, d.name());

@@ -1,5 +1,7 @@
 //! Errors of loading a scene, each naming the file, the place in it, and the problem.
 
+use super::brackets::scan_brackets;
+use super::spans::entry_at;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 use thiserror::Error;
@@ -99,7 +101,7 @@ pub(super) fn syntax_error(
     let plain = crate::messages::plain_type_words(message.trim());
     // The parser may quote the file (an unknown key of any length, say).
     let text = crate::messages::shown_within(&plain, 400);
-    let unclosed = super::brackets::scan_brackets(source, usize::MAX)
+    let unclosed = scan_brackets(source, usize::MAX)
         .unclosed
         .filter(|&at| at < offset && line_column(source, at).0 < line_column(source, offset).0);
     if let Some(at) = unclosed {
@@ -120,7 +122,7 @@ pub(super) fn syntax_error(
     let whole = span.as_ref().is_some_and(|s| s.is_empty());
     let entry = span
         .filter(|_| !whole)
-        .and_then(|s| super::spans::entry_at(source, s.start));
+        .and_then(|s| entry_at(source, s.start));
     let (line, column) = line_column(source, offset);
     SceneError::Syntax {
         path: path.to_path_buf(),

@@ -5,6 +5,7 @@
 use super::animation::Animation;
 use super::assemble::{ObjectOrigin, SceneFile};
 use super::assets::{Assets, read_text_file};
+use super::brackets::scan_brackets;
 use super::error::SceneError;
 use super::error::{line_column, syntax_error};
 use super::read_cache::ReadCache;
@@ -151,7 +152,7 @@ pub(super) fn parse_recorded(
 /// Refuses, before the parser reads it, an array longer than any field of the format takes
 /// (the parser's memory for a number is many times its text).
 pub(super) fn refuse_overlong_arrays(source: &str, path: &Path) -> Result<(), SceneError> {
-    match super::brackets::scan_brackets(source, limits::MAX_ARRAY_ELEMENTS).overlong {
+    match scan_brackets(source, limits::MAX_ARRAY_ELEMENTS).overlong {
         Some(at) => {
             let (line, column) = line_column(source, at);
             Err(SceneError::Syntax {

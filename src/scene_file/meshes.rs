@@ -1,6 +1,7 @@
 //! `[[meshes]]`: triangle meshes read from OBJ files, with their MTL materials mapped onto
 //! prism's. A file placed by many entries is read and built once (instancing).
 
+use super::assets::read_text_file;
 use super::error::SceneError;
 use super::mtl::{MtlMaterial, parse_mtl};
 use super::obj::{LineError, parse_obj};
@@ -302,15 +303,11 @@ impl Validator<'_> {
                 let bytes = bytes.map_err(|e| e.to_string())?;
                 String::from_utf8(bytes.to_vec()).map_err(|_| "it is not UTF-8 text".into())
             }
-            None => super::assets::read_text_file(
-                &self.locate(rel),
-                limits::MAX_MESH_FILE_BYTES,
-                "mesh file",
-            )
-            .map_err(|e| match e {
-                SceneError::Read { reason, .. } => reason,
-                other => other.to_string(),
-            }),
+            None => read_text_file(&self.locate(rel), limits::MAX_MESH_FILE_BYTES, "mesh file")
+                .map_err(|e| match e {
+                    SceneError::Read { reason, .. } => reason,
+                    other => other.to_string(),
+                }),
         }
     }
 

@@ -2,6 +2,7 @@
 //! the values that changed are rewritten; every other line, comment and blank keeps its
 //! place (`toml_edit` keeps the file's layout).
 
+use super::camera_table::camera_table;
 use super::load::LoadedScene;
 use crate::appearance::{Background, Falloff, Fog, FogKind, Light, LightKind, Material, Texture};
 use crate::camera::Camera;
@@ -88,7 +89,7 @@ pub fn saved_text(
 
 /// The camera's fields replaced by the view as it is now (eye, yaw and pitch, the lens).
 fn write_camera(doc: &mut DocumentMut, camera: &Camera, origin: DVec3) -> Result<(), SaveError> {
-    let table: DocumentMut = super::camera_table::camera_table(camera, origin)
+    let table: DocumentMut = camera_table(camera, origin)
         .parse()
         .map_err(|e: toml_edit::TomlError| SaveError::Parse(e.message().to_string()))?;
     let new = table["camera"]

@@ -7,7 +7,6 @@ use super::error::SceneError;
 use super::error::line_column;
 use super::fixed_array::Fixed;
 use super::spans::FieldSpans;
-use crate::appearance::{RADIANCE_BOUND, REFLECTANCE_BOUND};
 use crate::limits;
 use crate::messages::{outside_color_range, outside_length, outside_range};
 use glam::Vec3;
@@ -142,12 +141,12 @@ impl Validator<'_> {
     /// A surface's colour: the fraction of light it reflects, per channel.
     pub(super) fn reflectance(&self, at: &Item, field: &str, v: V3) -> Result<Vec3, SceneError> {
         let hi = *limits::REFLECTANCE.end();
-        self.color_up_to(at, field, v, hi, REFLECTANCE_BOUND)
+        self.color_up_to(at, field, v, hi, limits::REFLECTANCE_BOUND)
     }
 
     /// A light's colour, the background, the ambient light: brighter than white is allowed.
     pub(super) fn radiance(&self, at: &Item, field: &str, v: V3) -> Result<Vec3, SceneError> {
-        self.color_up_to(at, field, v, limits::MAX_RADIANCE, RADIANCE_BOUND)
+        self.color_up_to(at, field, v, limits::MAX_RADIANCE, limits::RADIANCE_BOUND)
     }
 
     pub(super) fn count(
