@@ -2,9 +2,10 @@
 //! of the scene file (the camera's `eye`, an object's `rotate`, a light's `intensity`, a
 //! material's `color`) given at keyframes and interpolated between them.
 //!
-//! A frame is made by writing each track's value at that frame into the scene file's text
-//! and validating the result as any scene file is, so an animated value obeys every bound
-//! the file's own values do, and a frame that breaks one is refused with its number.
+//! A frame is made by writing each track's value at that frame into a copy of the scene
+//! file's parse tree (the text is parsed once, frames.rs) and validating the result as any
+//! scene file is, so an animated value obeys every bound the file's own values do, and a
+//! frame that breaks one is refused with its number.
 //! Positions and numbers follow a Catmull-Rom spline through the keys (its tangents scaled
 //! by the keys' spacing in frames, so uneven keys keep an even speed); a `rotate` turns
 //! along the shortest arc between keys (quaternion slerp); `linear` and `step` do what
@@ -12,10 +13,12 @@
 
 use super::error::{SceneError, line_column, syntax_error};
 use super::kinds::object_kinds;
+use super::parse_tree::ParsedText;
 use crate::limits;
 use glam::{DQuat, EulerRot};
 use serde::Deserialize;
 use std::path::Path;
+use std::sync::Arc;
 use toml::Spanned;
 use toml_edit::{DocumentMut, Item, TableLike, Value};
 
@@ -77,8 +80,8 @@ pub struct Animation {
     pub fps: f64,
     /// The tracks.
     pub tracks: Vec<Track>,
-    /// The scene file, parsed for editing.
-    document: DocumentMut,
+    /// The scene file as written but for the tracks' keys, parsed once for every frame.
+    written: Arc<ParsedText>,
 }
 
 #[derive(Deserialize)]
@@ -166,12 +169,7 @@ impl Animation {
                 ),
             ));
         }
-        let mut animation = Animation {
-            frames: def.frames as u32,
-            fps,
-            tracks: Vec::new(),
-            document,
-        };
+        let mut document = document;
         let keys: usize = def.track.iter().map(|t| t.get_ref().keys.len()).sum();
         if keys > limits::MAX_KEYS {
             return Err(at(
@@ -184,10 +182,11 @@ impl Animation {
             ));
         }
         // The frames' text needs no keys (the tracks hold them now): each frame then
-        // clones, writes and parses the scene, not its animation.
-        without_keys(&mut animation.document);
+        // copies and reads the scene's tree, not its animation.
+        without_keys(&mut document);
         // One copy to look targets up in (the lookup borrows the document mutably).
-        let mut lookup = animation.document.clone();
+        let mut lookup = document.clone();
+        let mut tracks: Vec<Track> = Vec::new();
         for (i, track) in def.track.into_iter().enumerate() {
             let span = track.span();
             let item = format!("animation.track[{i}]");
@@ -198,9 +197,8 @@ impl Animation {
                 at(place.unwrap_or(span.clone()), item.clone(), message)
             };
             let parsed = Track::from_def(track).map_err(fail_at)?;
-            let place = canonical(&animation.document, &parsed.target);
-            if let Some(other) = animation
-                .tracks
+            let place = canonical(&document, &parsed.target);
+            if let Some(other) = tracks
                 .iter()
                 .find(|t| t.place == place && t.field == parsed.field)
             {
@@ -213,49 +211,26 @@ impl Animation {
             target_table(&mut lookup, &parsed.target)
                 .map_err(|message| at(target_span.clone(), item.clone(), message))?;
             let mut parsed = parsed;
-            parsed.place = canonical(&animation.document, &parsed.target);
-            animation.tracks.push(parsed);
+            parsed.place = place;
+            tracks.push(parsed);
         }
-        Ok(Some(animation))
+        Ok(Some(Animation {
+            frames: def.frames as u32,
+            fps,
+            tracks,
+            written: Arc::new(ParsedText::parse(document.to_string(), path)?),
+        }))
     }
 
     /// The scene file's text as written, but for the tracks' keys (emptied, their lines
-    /// kept): what validating the file as written reads.
-    pub fn written_source(&self) -> String {
-        self.document.to_string()
+    /// kept): what validating the file as written reads, and every frame's text.
+    pub fn written_source(&self) -> &str {
+        self.written.text()
     }
 
-    /// The scene file's text at `frame`: every track's value written into its field. The
-    /// text keeps its `[animation]` table (loaded as a file, it is frame 0 again): validate
-    /// it with `scene_at`.
-    pub fn source_at(&self, frame: u32) -> String {
-        let mut document = self.document.clone();
-        for track in &self.tracks {
-            // Every place was found when the animation was read, and no track can replace a
-            // table that holds another's: tracks write fields of the tables they name.
-            let table = target_table(&mut document, &track.place)
-                .expect("targets were found when the animation was read");
-            let numbers = track.value_at(frame as f64);
-            let value = if track.scalar {
-                Value::from(numbers[0])
-            } else {
-                Value::Array(numbers.into_iter().collect())
-            };
-            match table.get_mut(&track.field) {
-                Some(item) => {
-                    // The value's comment and spacing stay as the file had them.
-                    let mut value = value;
-                    if let Some(old) = item.as_value() {
-                        *value.decor_mut() = old.decor().clone();
-                    }
-                    *item = Item::Value(value);
-                }
-                None => {
-                    table.insert(&track.field, Item::Value(value));
-                }
-            }
-        }
-        document.to_string()
+    /// The parsed text of `written_source`.
+    pub(super) fn written(&self) -> &ParsedText {
+        &self.written
     }
 }
 
@@ -348,6 +323,31 @@ impl Track {
     /// the shortest arc when smooth.
     fn is_rotation(&self) -> bool {
         self.field == "rotate" && !self.scalar && self.keys[0].value.len() == 3
+    }
+
+    /// The value at `frame` as TOML text: a number, or an array of numbers, each written
+    /// so that it reads back as the same f64.
+    pub(super) fn toml_at(&self, frame: u32) -> String {
+        let number = |x: f64| {
+            if x.is_nan() {
+                "nan".to_string()
+            } else {
+                format!("{x:?}")
+            }
+        };
+        let numbers = self.value_at(frame as f64);
+        if self.scalar {
+            number(numbers[0])
+        } else {
+            let items: Vec<String> = numbers.into_iter().map(number).collect();
+            format!("[{}]", items.join(", "))
+        }
+    }
+
+    /// The table the track writes, as `camera`, `materials.NAME` or `spheres[2]` (an
+    /// object's name made its table and index, which no track can change).
+    pub(super) fn place(&self) -> &str {
+        &self.place
     }
 
     /// The value at `frame`: a key's own value at its frame, the first key's before it and
@@ -748,8 +748,6 @@ keys = [{ frame = 0, value = [0.8, 0.1, 0.1] }, { frame = 9, value = [0.1, 0.1, 
             .unwrap()
             .unwrap();
         assert_eq!((a.frames, a.fps, a.tracks.len()), (10, 5.0, 3));
-        let text = a.source_at(9);
-        assert!(text.contains("# the eye"), "comments are kept: {text}");
         let still = SCENE
             .replace("eye = [0, 1, 8]", "eye = [8, 1, 0]")
             .replace("color = [0.8, 0.1, 0.1]", "color = [0.1, 0.1, 0.8]")
@@ -760,9 +758,7 @@ keys = [{ frame = 0, value = [0.8, 0.1, 0.1] }, { frame = 9, value = [0.1, 0.1, 
         let still = &still[..still.find("[animation]").unwrap()];
         let dir = Path::new(".");
         let assets = crate::scene_file::Assets::Folder(dir);
-        let (framed, _) =
-            super::super::load::parse_still(&text, Path::new("a.toml"), assets, &mut Vec::new())
-                .unwrap();
+        let framed = a.scene_at(9, Path::new("a.toml"), assets).unwrap();
         let expected = crate::scene_file::parse_scene(still, Path::new("b.toml"), dir).unwrap();
         assert_eq!(framed, expected);
         // The loader takes an animated file at its first frame.

@@ -3,18 +3,17 @@
 //! another placement, as a load of the file with those values would validate it (the
 //! viewer's transform edits).
 
-use super::assemble::SceneFile;
 use super::assets::Assets;
 use super::entry_def::{EntryDef, entry_label};
 use super::error::SceneError;
 use super::fixed_array::Fixed;
 use super::kinds::object_kinds;
-use super::load::LoadedScene;
-
+use super::load::{LoadedScene, read_tables};
+use super::parse_tree::{Tree, parse_tree};
 use super::spans::FieldSpans;
 use super::validator::{Item, P3, V3, Validator};
 use crate::scene::{EditError, ObjectPlacement, Scene, ShapeDesc};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// The entry interface for every kind of object entry (kinds.rs).
 macro_rules! entry_defs {
@@ -95,21 +94,37 @@ impl LoadedScene {
         object: usize,
         placement: &ObjectPlacement,
     ) -> Result<Option<PlacedEntry>, SceneError> {
+        // The file as this load validated it: an animated file's at its frame.
+        match &self.animation {
+            Some(animation) => animation.with_frame_tree(self.frame, |tree, source| {
+                self.placed_in(tree, source, scene, object, placement)
+            }),
+            None => match parse_tree(&self.source, Path::new("")) {
+                Ok(tree) => self.placed_in(&tree, &self.source, scene, object, placement),
+                Err(_) => Ok(None),
+            },
+        }
+    }
+
+    /// `placed_entry` in the file whose parse tree is `tree` and text `source`.
+    fn placed_in(
+        &self,
+        tree: &Tree,
+        source: &str,
+        scene: &Scene,
+        object: usize,
+        placement: &ObjectPlacement,
+    ) -> Result<Option<PlacedEntry>, SceneError> {
         let Some(origin) = self.origins.get(object) else {
             return Ok(None);
         };
-        // The file as this load validated it: an animated file's at its frame.
-        let source = match &self.animation {
-            Some(animation) => animation.source_at(self.frame),
-            None => self.source.clone(),
-        };
-        let Ok(mut file) = toml::from_str::<SceneFile>(&source) else {
+        let Ok(mut file) = read_tables(tree, source, Path::new("")) else {
             return Ok(None);
         };
         let v = Validator {
             path: PathBuf::new(),
-            source: &source,
-            spans: FieldSpans::new(&source),
+            source,
+            spans: FieldSpans::of(tree),
             assets: Assets::Embedded(&[]),
             origin: glam::DVec3::from(file.camera.get_ref().eye),
             reads: Default::default(),

@@ -8,11 +8,13 @@ use super::assets::{Assets, read_text_file};
 use super::brackets::scan_brackets;
 use super::error::SceneError;
 use super::error::{line_column, syntax_error};
+use super::parse_tree::{Tree, parse_tree};
 use super::read_cache::ReadCache;
 use super::spans::FieldSpans;
 use super::validator::Validator;
 use crate::limits;
 use crate::scene::Scene;
+use serde::Deserialize;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -138,12 +140,8 @@ pub(super) fn parse_recorded(
                 Some(_) => assets,
                 None => assets.cached_in(&cache),
             };
-            parse_still(&animation.written_source(), path, assets, files)?;
-            let (scene, origins) = parse_still(&animation.source_at(0), path, assets, files)
-                .map_err(|error| SceneError::Frame {
-                    frame: 0,
-                    error: Box::new(error),
-                })?;
+            animation.validate_as_written(path, assets, files)?;
+            let (scene, origins) = animation.frame_scene(0, path, assets, files)?;
             Ok((scene, origins, Some(animation)))
         }
     }
@@ -177,13 +175,25 @@ pub(super) fn parse_still(
     assets: Assets,
     files: &mut Vec<PathBuf>,
 ) -> Result<(Scene, Vec<ObjectOrigin>), SceneError> {
-    let file: SceneFile =
-        toml::from_str(source).map_err(|e| syntax_error(source, path, e.span(), e.message()))?;
+    validate_tree(&parse_tree(source, path)?, source, path, assets, files)
+}
+
+/// Validates the scene file whose text is `source` and whose parse tree is `tree` (which
+/// may hold values the text does not: an animation's frame), adding each file it reads to
+/// `files` (once).
+pub(super) fn validate_tree(
+    tree: &Tree,
+    source: &str,
+    path: &Path,
+    assets: Assets,
+    files: &mut Vec<PathBuf>,
+) -> Result<(Scene, Vec<ObjectOrigin>), SceneError> {
+    let file = read_tables(tree, source, path)?;
     let eye = file.camera.get_ref().eye;
     let v = Validator {
         path: path.to_path_buf(),
         source,
-        spans: FieldSpans::new(source),
+        spans: FieldSpans::of(tree),
         assets,
         origin: glam::DVec3::from(eye),
         reads: Default::default(),
@@ -195,4 +205,11 @@ pub(super) fn parse_still(
         }
     }
     result
+}
+
+/// The file's tables, as written in the parse tree `tree` of `source`: the types and
+/// names of fields, not yet their values.
+pub(super) fn read_tables(tree: &Tree, source: &str, path: &Path) -> Result<SceneFile, SceneError> {
+    SceneFile::deserialize(toml::de::Deserializer::from(tree.clone()))
+        .map_err(|e| syntax_error(source, path, e.span(), e.message()))
 }

@@ -23,6 +23,7 @@ mod materials;
 mod meshes;
 mod mtl;
 mod obj;
+mod parse_tree;
 mod placement;
 mod read_cache;
 mod render_table;

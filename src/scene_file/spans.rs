@@ -5,25 +5,22 @@ use std::ops::Range;
 use toml::Spanned;
 use toml::de::{DeTable, DeValue};
 
-/// The parsed file with a span on every key and value.
-pub struct FieldSpans<'i> {
-    root: Option<Spanned<DeTable<'i>>>,
+/// The spans of a parsed file's keys and values.
+pub struct FieldSpans<'a> {
+    root: &'a Spanned<DeTable<'a>>,
 }
 
-impl<'i> FieldSpans<'i> {
-    /// The spans of `source` (which has already parsed as a scene file).
-    pub fn new(source: &'i str) -> Self {
-        Self {
-            root: DeTable::parse(source).ok(),
-        }
+impl<'a> FieldSpans<'a> {
+    /// The spans of the file `root` is the parse tree of (parse_tree.rs).
+    pub fn of(root: &'a Spanned<DeTable<'a>>) -> Self {
+        Self { root }
     }
 
     /// The span of `field` in the table whose span starts at `table_start`: a key's own
     /// span, or for `key[i]` (and `key[i][j]`) the span of that element of its array. None
     /// when the table or the field is not found (a field the file leaves out).
     pub fn field(&self, table_start: usize, field: &str) -> Option<Range<usize>> {
-        let root = self.root.as_ref()?;
-        let table = find_table(root.get_ref(), table_start)?;
+        let table = find_table(self.root.get_ref(), table_start)?;
         let (key, indices) = split_field(field)?;
         let mut indices = indices.as_slice();
         let (key_span, value) = table
@@ -155,7 +152,8 @@ mod tests {
 
     #[test]
     fn a_field_and_an_array_element_are_found_on_their_own_lines() {
-        let spans = FieldSpans::new(TEXT);
+        let tree = DeTable::parse(TEXT).unwrap();
+        let spans = FieldSpans::of(&tree);
         let sphere = table_start("[[spheres]]");
         let polygon = table_start("[[polygons]]");
         // What serde reports as the tables' spans starts at the same places.

@@ -131,7 +131,9 @@ impl App {
         };
         let panel = &mut self.panel;
         let status = &self.status;
+        let image = &*g;
         let output = g.egui_ctx.run_ui(input, |ui| {
+            image.paint_image(ui.ctx());
             egui::Panel::left("controls")
                 .exact_size(PANEL_WIDTH)
                 .resizable(false)
@@ -269,10 +271,7 @@ impl App {
         g.pixels
             .resize_surface(size.width, size.height)
             .context("resizing the window surface")?;
-        g.pixels
-            .resize_buffer(size.width, size.height)
-            .context("resizing the framebuffer")?;
-        g.pixels.frame_mut().fill(0);
+        g.clear_image();
         self.shown_serial = 0;
         let (iw, ih) = g.image_size();
         let s = self.settings(iw, ih);

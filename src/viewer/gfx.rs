@@ -1,6 +1,7 @@
-//! The window and what draws into it: the `pixels` framebuffer that holds the image beside
-//! the panel, and egui's renderer on top. Event handling lives in mod.rs; this file only
-//! opens the window and draws frames.
+//! The window and what draws into it: the `pixels` surface, the image beside the panel as
+//! a texture of its own (uploaded only when a new image arrives, and only the image's
+//! area), and egui's panel on top. Event handling lives elsewhere; this file only opens
+//! the window and draws frames.
 
 use super::panel::PANEL_WIDTH;
 use super::render_thread::{Published, RenderThread};
@@ -20,6 +21,8 @@ pub struct Gfx {
     renderer: egui_wgpu::Renderer,
     pub render: RenderThread,
     pub size: PhysicalSize<u32>,
+    /// The image shown beside the panel, once one has arrived.
+    image: Option<egui::TextureHandle>,
 }
 
 impl Gfx {
@@ -43,7 +46,9 @@ impl Gfx {
         );
         let size = window.inner_size();
         let surface = SurfaceTexture::new(size.width.max(1), size.height.max(1), window.clone());
-        let pixels = PixelsBuilder::new(size.width.max(1), size.height.max(1), surface)
+        // The framebuffer `pixels` uploads on every draw is one pixel, unused: the image is
+        // a texture that changes only when the image does.
+        let pixels = PixelsBuilder::new(1, 1, surface)
             .enable_vsync(true)
             .build()
             .map_err(|e| {
@@ -76,6 +81,7 @@ impl Gfx {
             renderer,
             render,
             size,
+            image: None,
         })
     }
 
@@ -89,16 +95,51 @@ impl Gfx {
         image_size(self.size, &self.window)
     }
 
-    /// Shows the render thread's latest image if it is newer than `shown` (a publication
-    /// serial), and returns what the thread reports with it and the serial now shown.
+    /// Takes the render thread's latest image as the one to show if it is newer than
+    /// `shown` (a publication serial), and returns what the thread reports with it and the
+    /// serial now shown.
     pub fn take_published(&mut self, shown: u64) -> (super::render_thread::Status, u64) {
-        let x0 = self.panel_px();
-        let (fw, fh) = (self.size.width, self.size.height);
         let p = self.render.published();
-        if p.serial != shown {
-            copy_image(self.pixels.frame_mut(), fw, fh, x0, &p);
+        if p.serial != shown
+            && let Some(image) = shown_image(&p)
+        {
+            match &mut self.image {
+                Some(texture) => texture.set(image, egui::TextureOptions::NEAREST),
+                None => {
+                    let texture =
+                        self.egui_ctx
+                            .load_texture("image", image, egui::TextureOptions::NEAREST);
+                    self.image = Some(texture);
+                }
+            }
         }
         (p.status.clone(), p.serial)
+    }
+
+    /// Forgets the image shown (the window's size changed; the next image is its own).
+    pub fn clear_image(&mut self) {
+        self.image = None;
+    }
+
+    /// Paints the image beside the panel, under everything egui draws.
+    pub fn paint_image(&self, ctx: &egui::Context) {
+        let Some(texture) = &self.image else {
+            return;
+        };
+        // Physical pixels one to one: the image starts where the panel ends.
+        let ppp = ctx.pixels_per_point();
+        let [w, h] = texture.size();
+        let rect = egui::Rect::from_min_size(
+            egui::pos2(self.panel_px() as f32 / ppp, 0.0),
+            egui::vec2(w as f32 / ppp, h as f32 / ppp),
+        );
+        let whole = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
+        ctx.layer_painter(egui::LayerId::background()).image(
+            texture.id(),
+            rect,
+            whole,
+            egui::Color32::WHITE,
+        );
     }
 
     /// Draws one frame: the framebuffer scaled to the window, then egui's `shapes` with
@@ -117,7 +158,6 @@ impl Gfx {
         let renderer = &mut self.renderer;
         self.pixels
             .render_with(|encoder, target, context| {
-                context.scaling_renderer.render(encoder, target);
                 for (id, delta) in &textures.set {
                     renderer.update_texture(&context.device, &context.queue, *id, delta);
                 }
@@ -129,7 +169,7 @@ impl Gfx {
                     &screen,
                 );
                 debug_assert!(extra.is_empty(), "no egui paint callbacks are used");
-                // egui draws over what the framebuffer put in `target`, and keeps it.
+                // egui draws the whole window: the image (see `paint_image`), then the panel.
                 let mut pass = encoder
                     .begin_render_pass(&wgpu::RenderPassDescriptor {
                         label: Some("egui"),
@@ -138,7 +178,7 @@ impl Gfx {
                             depth_slice: None,
                             resolve_target: None,
                             ops: wgpu::Operations {
-                                load: wgpu::LoadOp::Load,
+                                load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
                                 store: wgpu::StoreOp::Store,
                             },
                         })],
@@ -170,33 +210,24 @@ fn image_size(size: PhysicalSize<u32>, window: &Window) -> (u32, u32) {
     (w, size.height.max(1))
 }
 
-/// Copies the published image into a frame of `fw` × `fh` RGBA pixels at column `x0` (to
-/// the right of the panel), clipping to whichever is smaller while a resize is on its way to
-/// the render thread.
-fn copy_image(frame: &mut [u8], fw: u32, fh: u32, x0: u32, p: &Published) {
-    let cols = p.width.min(fw.saturating_sub(x0)) as usize;
-    let rows = p.height.min(fh) as usize;
-    // A window narrower than the panel shows no image at all.
-    if cols == 0 {
-        return;
+/// The published image as a texture's pixels, with the selection's outline drawn in;
+/// None before the first image.
+fn shown_image(p: &Published) -> Option<egui::ColorImage> {
+    let (w, h) = (p.width as usize, p.height as usize);
+    if w == 0 || h == 0 || p.rgba.len() != w * h * 4 {
+        return None;
     }
-    let outline = p
-        .outline
-        .as_deref()
-        .filter(|o| o.len() == p.width as usize * p.height as usize);
-    for y in 0..rows {
-        let src = y * p.width as usize * 4;
-        let dst = (y * fw as usize + x0 as usize) * 4;
-        let row = &mut frame[dst..dst + cols * 4];
-        row.copy_from_slice(&p.rgba[src..src + cols * 4]);
-        if let Some(outline) = outline {
-            let marks = &outline[y * p.width as usize..][..cols];
-            for (pixel, _) in row.chunks_exact_mut(4).zip(marks).filter(|(_, m)| **m) {
-                pixel.copy_from_slice(&SELECTION_COLOR);
-            }
-        }
-    }
+    let outline = p.outline.as_deref().filter(|o| o.len() == w * h);
+    let pixels = p
+        .rgba
+        .chunks_exact(4)
+        .enumerate()
+        .map(|(i, c)| match outline {
+            Some(marks) if marks[i] => SELECTION_COLOR,
+            _ => egui::Color32::from_rgba_premultiplied(c[0], c[1], c[2], c[3]),
+        })
+        .collect();
+    Some(egui::ColorImage::new([w, h], pixels))
 }
 
-/// The colour the selected object is outlined in on screen.
-const SELECTION_COLOR: [u8; 4] = [255, 150, 0, 255];
+const SELECTION_COLOR: egui::Color32 = egui::Color32::from_rgb(255, 150, 0);
