@@ -531,3 +531,47 @@ fn the_frame_row_steps_through_an_animation() {
     let second = image::open(&taken[1]).unwrap().into_rgb8();
     assert!(differing(&first, &second, 0) > 0.05);
 }
+
+/// The image is uploaded to the window only when a new one arrives, and then only the
+/// image's pixels: the frames the panel's hover redraws after the render converged upload
+/// nothing, and every upload is the 320×240 image, not the window.
+#[test]
+fn frames_for_the_panel_alone_upload_no_image() {
+    if !window_tools() {
+        return;
+    }
+    let work = tempfile::tempdir().unwrap();
+    let log = run_script("uploads.sh", work.path()).log;
+    // Each frame's line: `prism-timing: frame AT SINCE_LAST TO_DRAW BYTES`.
+    let frames: Vec<(usize, u64)> = log
+        .lines()
+        .enumerate()
+        .filter_map(|(i, line)| {
+            let bytes = line.strip_prefix("prism-timing: frame ")?;
+            Some((i, bytes.split_whitespace().nth(3)?.parse().ok()?))
+        })
+        .collect();
+    let uploads: Vec<u64> = frames.iter().map(|f| f.1).filter(|&b| b > 0).collect();
+    assert!(!uploads.is_empty(), "no image was uploaded: {log}");
+    assert!(
+        uploads.iter().all(|&b| b == 320 * 240 * 4),
+        "uploads of other sizes: {uploads:?}"
+    );
+    // After the converged image (drawn in the frame that reports it, or the one after).
+    let converged = log.lines().position(|l| l.contains("converged")).unwrap();
+    let after: Vec<u64> = frames
+        .iter()
+        .filter(|f| f.0 > converged)
+        .skip(1)
+        .map(|f| f.1)
+        .collect();
+    assert!(
+        after.len() >= 3,
+        "only {} frames for the hover: {log}",
+        after.len()
+    );
+    assert!(
+        after.iter().all(|&b| b == 0),
+        "frames with no new image uploaded {after:?}"
+    );
+}

@@ -107,7 +107,7 @@ impl App {
         let Some(g) = &mut self.gfx else {
             return Ok(());
         };
-        let (status, serial) = g.take_published(self.shown_serial);
+        let (status, serial, uploaded) = g.take_published(self.shown_serial);
         self.shown_serial = serial;
         self.report(status);
         let Some(g) = &mut self.gfx else {
@@ -131,9 +131,7 @@ impl App {
         };
         let panel = &mut self.panel;
         let status = &self.status;
-        let image = &*g;
         let output = g.egui_ctx.run_ui(input, |ui| {
-            image.paint_image(ui.ctx());
             egui::Panel::left("controls")
                 .exact_size(PANEL_WIDTH)
                 .resizable(false)
@@ -148,7 +146,7 @@ impl App {
             output.textures_delta,
         )?;
         if let Some(t) = &mut self.timing {
-            t.frame(self.status.generation, self.status.preview, now);
+            t.frame(self.status.generation, self.status.preview, now, uploaded);
         }
         let repaint_now = output
             .viewport_output

@@ -1,10 +1,10 @@
-//! The window and what draws into it: the `pixels` surface, the image beside the panel as
-//! a texture of its own (uploaded only when a new image arrives, and only the image's
-//! area), and egui's panel on top. Event handling lives elsewhere; this file only opens
-//! the window and draws frames.
+//! The window and what draws into it: the `pixels` surface, the image beside the panel
+//! (image_layer.rs), and egui's panel on top. Event handling lives elsewhere; this file
+//! only opens the window and draws frames.
 
+use super::image_layer::ImageLayer;
 use super::panel::PANEL_WIDTH;
-use super::render_thread::{Published, RenderThread};
+use super::render_thread::RenderThread;
 use anyhow::{Context, Result, anyhow};
 use pixels::{Pixels, PixelsBuilder, SurfaceTexture, wgpu};
 use std::sync::Arc;
@@ -21,8 +21,8 @@ pub struct Gfx {
     renderer: egui_wgpu::Renderer,
     pub render: RenderThread,
     pub size: PhysicalSize<u32>,
-    /// The image shown beside the panel, once one has arrived.
-    image: Option<egui::TextureHandle>,
+    /// The image shown beside the panel.
+    image: ImageLayer,
 }
 
 impl Gfx {
@@ -72,6 +72,7 @@ impl Gfx {
             pixels.surface_texture_format(),
             egui_wgpu::RendererOptions::default(),
         );
+        let image = ImageLayer::new(pixels.device(), pixels.render_texture_format());
         let render = start_render(image_size(size, &window));
         Ok(Gfx {
             window,
@@ -81,7 +82,7 @@ impl Gfx {
             renderer,
             render,
             size,
-            image: None,
+            image,
         })
     }
 
@@ -96,50 +97,21 @@ impl Gfx {
     }
 
     /// Takes the render thread's latest image as the one to show if it is newer than
-    /// `shown` (a publication serial), and returns what the thread reports with it and the
-    /// serial now shown.
-    pub fn take_published(&mut self, shown: u64) -> (super::render_thread::Status, u64) {
+    /// `shown` (a publication serial), and returns what the thread reports with it, the
+    /// serial now shown and the bytes of image uploaded (0 when it was not new).
+    pub fn take_published(&mut self, shown: u64) -> (super::render_thread::Status, u64, usize) {
         let p = self.render.published();
-        if p.serial != shown
-            && let Some(image) = shown_image(&p)
-        {
-            match &mut self.image {
-                Some(texture) => texture.set(image, egui::TextureOptions::NEAREST),
-                None => {
-                    let texture =
-                        self.egui_ctx
-                            .load_texture("image", image, egui::TextureOptions::NEAREST);
-                    self.image = Some(texture);
-                }
-            }
+        let mut uploaded = 0;
+        if p.serial != shown {
+            let context = self.pixels.context();
+            uploaded = self.image.upload(&context.device, &context.queue, &p);
         }
-        (p.status.clone(), p.serial)
+        (p.status.clone(), p.serial, uploaded)
     }
 
     /// Forgets the image shown (the window's size changed; the next image is its own).
     pub fn clear_image(&mut self) {
-        self.image = None;
-    }
-
-    /// Paints the image beside the panel, under everything egui draws.
-    pub fn paint_image(&self, ctx: &egui::Context) {
-        let Some(texture) = &self.image else {
-            return;
-        };
-        // Physical pixels one to one: the image starts where the panel ends.
-        let ppp = ctx.pixels_per_point();
-        let [w, h] = texture.size();
-        let rect = egui::Rect::from_min_size(
-            egui::pos2(self.panel_px() as f32 / ppp, 0.0),
-            egui::vec2(w as f32 / ppp, h as f32 / ppp),
-        );
-        let whole = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
-        ctx.layer_painter(egui::LayerId::background()).image(
-            texture.id(),
-            rect,
-            whole,
-            egui::Color32::WHITE,
-        );
+        self.image.clear();
     }
 
     /// Draws one frame: the framebuffer scaled to the window, then egui's `shapes` with
@@ -155,9 +127,12 @@ impl Gfx {
             size_in_pixels: [self.size.width, self.size.height],
             pixels_per_point,
         };
+        let (size, left) = ((self.size.width, self.size.height), self.panel_px());
         let renderer = &mut self.renderer;
+        let image = &self.image;
         self.pixels
             .render_with(|encoder, target, context| {
+                image.draw(&context.queue, encoder, target, size, left);
                 for (id, delta) in &textures.set {
                     renderer.update_texture(&context.device, &context.queue, *id, delta);
                 }
@@ -169,7 +144,7 @@ impl Gfx {
                     &screen,
                 );
                 debug_assert!(extra.is_empty(), "no egui paint callbacks are used");
-                // egui draws the whole window: the image (see `paint_image`), then the panel.
+                // egui draws the panel over the image, keeping what is there.
                 let mut pass = encoder
                     .begin_render_pass(&wgpu::RenderPassDescriptor {
                         label: Some("egui"),
@@ -178,7 +153,7 @@ impl Gfx {
                             depth_slice: None,
                             resolve_target: None,
                             ops: wgpu::Operations {
-                                load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                                load: wgpu::LoadOp::Load,
                                 store: wgpu::StoreOp::Store,
                             },
                         })],
@@ -209,25 +184,3 @@ fn image_size(size: PhysicalSize<u32>, window: &Window) -> (u32, u32) {
     let w = size.width.saturating_sub(panel_px(window)).max(1);
     (w, size.height.max(1))
 }
-
-/// The published image as a texture's pixels, with the selection's outline drawn in;
-/// None before the first image.
-fn shown_image(p: &Published) -> Option<egui::ColorImage> {
-    let (w, h) = (p.width as usize, p.height as usize);
-    if w == 0 || h == 0 || p.rgba.len() != w * h * 4 {
-        return None;
-    }
-    let outline = p.outline.as_deref().filter(|o| o.len() == w * h);
-    let pixels = p
-        .rgba
-        .chunks_exact(4)
-        .enumerate()
-        .map(|(i, c)| match outline {
-            Some(marks) if marks[i] => SELECTION_COLOR,
-            _ => egui::Color32::from_rgba_premultiplied(c[0], c[1], c[2], c[3]),
-        })
-        .collect();
-    Some(egui::ColorImage::new([w, h], pixels))
-}
-
-const SELECTION_COLOR: egui::Color32 = egui::Color32::from_rgb(255, 150, 0);

@@ -10,6 +10,7 @@ mod edits;
 mod event_loop;
 mod gfx;
 mod history;
+mod image_layer;
 mod input;
 mod launch;
 mod panel;

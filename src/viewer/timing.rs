@@ -2,7 +2,7 @@
 //! first image on screen, for tests/window/responsiveness.sh to summarise.
 //!
 //! ```text
-//! prism-timing: frame MS_SINCE_START MS_SINCE_LAST_FRAME
+//! prism-timing: frame MS_SINCE_START MS_SINCE_LAST_FRAME MS_TO_DRAW BYTES_OF_IMAGE_UPLOADED
 //! prism-timing: shown KIND LATENCY_MS coarse|full
 //! ```
 
@@ -30,14 +30,14 @@ impl Timing {
     }
 
     /// A frame begun at `began` was drawn showing an image of generation `shown`
-    /// (`preview`: a coarse one). The line gives when, the time since the frame before,
-    /// and how long this one took to draw.
-    pub fn frame(&mut self, shown: u64, preview: bool, began: Instant) {
+    /// (`preview`: a coarse one), uploading `uploaded` bytes of image. The line gives when,
+    /// the time since the frame before, how long this one took to draw, and the bytes.
+    pub fn frame(&mut self, shown: u64, preview: bool, began: Instant, uploaded: usize) {
         let now = Instant::now();
         let ms = |a: Instant, b: Instant| (b - a).as_secs_f64() * 1e3;
         let interval = self.last_frame.map_or(0.0, |l| ms(l, now));
         eprintln!(
-            "prism-timing: frame {:.1} {interval:.2} {:.2}",
+            "prism-timing: frame {:.1} {interval:.2} {:.2} {uploaded}",
             ms(self.start, now),
             ms(began, now)
         );
