@@ -350,16 +350,22 @@ impl Bvh {
                 entered[j] = (t_enter[lane], lane);
                 k += 1;
             }
-            for &(t, lane) in &entered[..k] {
-                stack.push(Pending {
-                    t_enter: t,
-                    child: n.child[lane],
-                    count: n.count[lane],
-                });
+            let pending = |(t, lane): (f32, usize)| Pending {
+                t_enter: t,
+                child: n.child[lane],
+                count: n.count[lane],
+            };
+            // The nearest is taken at once, not pushed and popped: the same order.
+            let mut nearest = None;
+            if k > 0 {
+                for &entry in &entered[..k - 1] {
+                    stack.push(pending(entry));
+                }
+                nearest = Some(pending(entered[k - 1]));
             }
-            // Test leaves as they come off the stack, until an inner node is due.
+            // Test leaves as they come, until an inner node is due.
             loop {
-                let Some(p) = stack.pop() else {
+                let Some(p) = nearest.take().or_else(|| stack.pop()) else {
                     return t_max;
                 };
                 if p.t_enter > t_max {
@@ -391,11 +397,16 @@ impl Bvh {
         loop {
             let n = &self.nodes[node as usize];
             let (mut mask, _) = n.enter(&ray, t_max);
+            // The last inner child entered is the next node, taken at once rather than
+            // pushed and popped: the same order.
+            let mut next = None;
             while mask != 0 {
                 let lane = mask.trailing_zeros() as usize;
                 mask &= mask - 1;
                 if n.count[lane] == 0 {
-                    stack.push(n.child[lane]);
+                    if let Some(earlier) = next.replace(n.child[lane]) {
+                        stack.push(earlier);
+                    }
                 } else {
                     let first = n.child[lane];
                     for i in first..first + n.count[lane] {
@@ -405,7 +416,7 @@ impl Bvh {
                     }
                 }
             }
-            match stack.pop() {
+            match next.or_else(|| stack.pop()) {
                 Some(next) => node = next,
                 None => return,
             }
