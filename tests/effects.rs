@@ -32,12 +32,11 @@ fn mean_along(prepared: &PreparedScene, ray: Ray, n: u32, px: u32) -> Vec3 {
     sum / n as f32
 }
 
-/// A floor lit by a sphere light of radius 1 at height 10 over a half-plane occluder at
-/// height 5 that covers x < 0: by similar triangles the penumbra spans |x| < R·h/(H − h) = 1,
-/// and at x the light's visible share is that of the unit disc beyond −x (the sampled disc
-/// faces the point, within 6° of level here): (acos c − c·√(1 − c²))/π for c = −x.
-#[test]
-fn a_sphere_lights_penumbra_has_the_analytic_width_and_profile() {
+/// A floor lit by `light` (TOML: a disc of radius 1 at height 10) over a half-plane occluder
+/// at height 5 that covers x < 0: by similar triangles the penumbra spans |x| < R·h/(H − h)
+/// = 1, and at x the light's visible share is that of the unit disc beyond −x: (acos c −
+/// c·√(1 − c²))/π for c = −x.
+fn penumbra_has_the_analytic_width_and_profile(light: &str) {
     let scene = |occluder: bool| {
         let wall = if occluder {
             "[[boxes]]\nmin = [-100, 4.99, -100]\nmax = [0, 5, 100]\nmaterial = \"matte\"\n"
@@ -47,7 +46,7 @@ fn a_sphere_lights_penumbra_has_the_analytic_width_and_profile() {
         load(&format!(
             "[camera]\neye = [0, 20, 0]\ndirection = [0, -1, 0]\nup = [0, 0, -1]\nfov = 40\n\
              [render]\nambient = [0, 0, 0]\n\
-             [[lights]]\ntype = \"sphere\"\nposition = [0, 10, 0]\nradius = 1\nvisible = false\n\
+             [[lights]]\n{light}\n\
              [materials.matte]\ncolor = [1, 1, 1]\nspecular = 0\n\
              [[planes]]\npoint = [0, 0, 0]\nnormal = [0, 1, 0]\nmaterial = \"matte\"\n{wall}"
         ))
@@ -84,6 +83,58 @@ fn a_sphere_lights_penumbra_has_the_analytic_width_and_profile() {
     assert!(
         worst < 0.02,
         "largest difference from the analytic share {worst}"
+    );
+}
+
+/// A sphere light is sampled over its disc facing the shading point (within 6° of level
+/// here).
+#[test]
+fn a_sphere_lights_penumbra_has_the_analytic_width_and_profile() {
+    penumbra_has_the_analytic_width_and_profile(
+        "type = \"sphere\"\nposition = [0, 10, 0]\nradius = 1\nvisible = false",
+    );
+}
+
+/// A spotlight with a disc: the disc faces along the cone's axis, level here; the cone is
+/// wide enough to light the whole floor seen.
+#[test]
+fn a_spotlights_disc_casts_the_analytic_penumbra() {
+    penumbra_has_the_analytic_width_and_profile(
+        "type = \"spot\"\nposition = [0, 10, 0]\ndirection = [0, -1, 0]\nangle = 60\nradius = 1",
+    );
+}
+
+/// A spotlight whose disc has radius 0 is the point spotlight, to the bit; one with a disc
+/// lights its cone as the point one does (where nothing casts a shadow) and softens its
+/// shadows.
+#[test]
+fn a_spotlight_of_radius_0_is_a_point_and_a_disc_only_softens_shadows() {
+    let scene = |radius: &str| {
+        load(&format!(
+            "[camera]\neye = [0, 6, 8]\nlook_at = [0, 0, 0]\nfov = 50\n\
+             [render]\nambient = [0, 0, 0]\nwidth = 96\nheight = 72\n\
+             [[lights]]\ntype = \"spot\"\nposition = [0, 8, 0]\ndirection = [0, -1, 0]\n\
+             angle = 30\nsoftness = 0.2\n{radius}\n\
+             [materials.matte]\ncolor = [1, 1, 1]\nspecular = 0\n\
+             [[planes]]\npoint = [0, 0, 0]\nnormal = [0, 1, 0]\nmaterial = \"matte\"\n\
+             [[spheres]]\ncenter = [0.5, 1, 0]\nradius = 1\nmaterial = \"matte\"\n"
+        ))
+    };
+    let settings = RenderSettings::new(96, 72, 64);
+    let point = common::render_scene(&scene(""), settings);
+    assert_eq!(point, common::render_scene(&scene("radius = 0"), settings));
+    let sampled = |scene: &Scene| PreparedScene::new(scene).appearance.is_stochastic();
+    assert!(!sampled(&scene("")), "a point spot is not sampled");
+    let soft = scene("radius = 0.8");
+    assert!(sampled(&soft));
+    let disc = common::render_scene(&soft, settings);
+    // The cone's edge and the lit floor away from the shadow stay (within the noise of
+    // 64 subsamples); the shadow's edge, a small share of the image, moves.
+    let differing = fraction_differing(&point, &disc, 8);
+    assert!(
+        differing > 0.002 && differing < 0.05,
+        "{:.3} of pixels differ",
+        differing
     );
 }
 
@@ -365,7 +416,7 @@ fn effects_render_the_same_at_every_scale() {
          [fog]\ncolor = [0.5, 0.5, 0.55]\ndensity = 0.03\n\
          [[lights]]\ntype = \"area\"\ncorner = [-1, 4, -1]\nedge_u = [2, 0, 0]\nedge_v = [0, 0, 2]\n\
          [[lights]]\ntype = \"sphere\"\nposition = [3, 3, 2]\nradius = 0.4\nfalloff = \"inverse_square\"\nintensity = 12\n\
-         [[lights]]\ntype = \"spot\"\nposition = [-3, 4, 2]\ndirection = [0.5, -1, -0.3]\nangle = 25\nsoftness = 0.4\n\
+         [[lights]]\ntype = \"spot\"\nposition = [-3, 4, 2]\ndirection = [0.5, -1, -0.3]\nangle = 25\nsoftness = 0.4\nradius = 0.3\n\
          [materials.glossy]\ncolor = [0.6, 0.2, 0.2]\nreflectivity = 0.5\nroughness = 0.3\n\
          [materials.gold]\ncolor = [0.2, 0.2, 0.1]\nreflectivity = 0.8\nconductor = [1, 0.78, 0.34]\n\
          [materials.glass]\ntransparency = 0.9\nreflectivity = 0.1\neta = 1.5\nfresnel = true\nabsorption = [0.5, 0.1, 0.1]\n\

@@ -136,6 +136,14 @@ fn every_bad_light_is_refused_with_its_line() {
             "`softness` must lie in",
         ),
         (
+            "type = \"spot\"\nposition = [0, 5, 0]\ndirection = [0, -1, 0]\nangle = 20\nradius = -1 # <-",
+            "`radius` must be",
+        ),
+        (
+            "type = \"point\"\nposition = [0, 5, 0]\nradius = 1 # <-",
+            "`radius` does not apply to a point light",
+        ),
+        (
             "type = \"area\"\ncorner = [0, 5, 0]\nedge_u = [1, 0, 0]\nedge_v = [2, 0, 0] # <-",
             "must span a rectangle",
         ),

@@ -27,7 +27,7 @@ pub enum LightKind {
         /// How it fades with distance.
         falloff: Falloff,
     },
-    /// Light from one point into a cone.
+    /// Light from one point, or from a disc about it facing along the cone, into a cone.
     Spot {
         /// Where the light is, relative to the scene's origin.
         position: Vec3,
@@ -35,6 +35,9 @@ pub enum LightKind {
         falloff: Falloff,
         /// Where it shines.
         cone: SpotCone,
+        /// The radius of the disc that emits, facing along the cone's axis: 0 for a point
+        /// (hard shadows); above 0, one point of the disc per subsample (soft shadows).
+        radius: f32,
     },
     /// Parallel light from infinitely far away, like the sun's.
     Directional {
@@ -229,6 +232,15 @@ pub struct SpotCone {
 }
 
 impl SpotCone {
+    /// The point of the disc of `radius` about `center`, facing along the axis, that sample
+    /// `u` (in [0, 1)²) stands for: stratified samples stay stratified over the disc.
+    #[inline]
+    pub fn disc_point(&self, center: Vec3, radius: f32, u: (f32, f32)) -> Vec3A {
+        let (t, b) = crate::numerics::orthonormal_basis(self.direction);
+        let (dx, dy) = crate::sampler::concentric_disc(u);
+        Vec3A::from(center) + (Vec3A::from(t) * dx + Vec3A::from(b) * dy) * radius
+    }
+
     /// A cone about unit `direction` of half-angle `angle` degrees (0..=90) whose edge fades over
     /// `softness` (0..=1) of it.
     pub fn new(direction: Vec3, angle: f32, softness: f32) -> Self {
@@ -371,10 +383,15 @@ impl Light {
                 position,
                 falloff,
                 cone,
+                radius,
             } => {
                 within_reach("position", position)?;
                 FieldProblem::check_range("angle", cone.angle, &limits::SPOT_ANGLE)?;
                 FieldProblem::check_range("softness", cone.softness, &(0.0..=1.0))?;
+                // 0 is a point; a disc has a radius the tracer can square.
+                if radius != 0.0 {
+                    FieldProblem::check_length("radius", radius)?;
+                }
                 falloff.check()?;
             }
             LightKind::Directional { .. } => {}
@@ -403,8 +420,21 @@ impl Light {
     }
 
     /// The one point every shadow ray toward the light ends at (a point light's or a
-    /// spotlight's position); None for a directional or an area light.
+    /// spotlight's position); None for a directional or an area light, or a spotlight with
+    /// a disc.
     pub fn position(&self) -> Option<Vec3> {
+        match self.kind {
+            LightKind::Point { position, .. } => Some(position),
+            LightKind::Spot {
+                position, radius, ..
+            } => (radius == 0.0).then_some(position),
+            LightKind::Directional { .. } | LightKind::Area { .. } => None,
+        }
+    }
+
+    /// A point light's or a spotlight's position, a disc's or not; None for a directional
+    /// or an area light.
+    pub fn anchor(&self) -> Option<Vec3> {
         match self.kind {
             LightKind::Point { position, .. } | LightKind::Spot { position, .. } => Some(position),
             LightKind::Directional { .. } | LightKind::Area { .. } => None,
@@ -415,7 +445,16 @@ impl Light {
     pub fn center(&self) -> Option<Vec3> {
         match self.kind {
             LightKind::Area { shape, .. } => Some(shape.center()),
-            _ => self.position(),
+            _ => self.anchor(),
+        }
+    }
+
+    /// Whether its shadows are soft: it is sampled at one point of a surface per subsample.
+    pub fn is_soft(&self) -> bool {
+        match self.kind {
+            LightKind::Area { .. } => true,
+            LightKind::Spot { radius, .. } => radius > 0.0,
+            LightKind::Point { .. } | LightKind::Directional { .. } => false,
         }
     }
 
@@ -476,10 +515,12 @@ impl Light {
                 position,
                 falloff: f,
                 cone,
+                radius,
             } => LightKind::Spot {
                 position: position * scale,
                 falloff: falloff(f),
                 cone,
+                radius: radius * scale,
             },
             kind @ LightKind::Directional { .. } => kind,
             LightKind::Area {
@@ -510,6 +551,7 @@ mod tests {
                 position: Vec3::splat(1.0e12),
                 falloff,
                 cone: SpotCone::new(Vec3::NEG_Y, angle, softness),
+                radius: 0.0,
             },
             color: Vec3::splat(1.0e4),
         };
@@ -536,9 +578,18 @@ mod tests {
             },
             color: Vec3::ONE,
         };
+        let disc_spot = |radius: f32| {
+            let mut light = spot(30.0, 0.0);
+            if let LightKind::Spot { radius: r, .. } = &mut light.kind {
+                *r = radius;
+            }
+            light
+        };
         for ok in [
             spot(180.0, 1.0),
             spot(0.01, 0.0),
+            disc_spot(1.0e-12),
+            disc_spot(1.0e12),
             rectangle(Vec3::Y),
             sphere(1.0e-12),
             sphere(1.0e12),
@@ -554,6 +605,9 @@ mod tests {
             ("position", far),
             ("color", bright),
             ("intensity", intense),
+            ("radius", disc_spot(-1.0)),
+            ("radius", disc_spot(f32::NAN)),
+            ("radius", disc_spot(2.0e12)),
             ("angle", spot(180.5, 0.0)),
             ("angle", spot(0.001, 0.0)),
             ("softness", spot(30.0, 1.5)),

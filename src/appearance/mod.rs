@@ -172,13 +172,11 @@ impl Appearance {
         self.fog.as_ref()
     }
 
-    /// Whether shading draws random numbers: an area light or a glossy material. Its pixels
-    /// are then noisy as well as edged, which adaptive sampling must allow for.
+    /// Whether shading draws random numbers: a light with soft shadows or a glossy
+    /// material. Its pixels are then noisy as well as edged, which adaptive sampling must
+    /// allow for.
     pub fn is_stochastic(&self) -> bool {
-        self.lights
-            .iter()
-            .any(|l| matches!(l.kind, LightKind::Area { .. }))
-            || self.materials.iter().any(|m| m.roughness > 0.0)
+        self.lights.iter().any(Light::is_soft) || self.materials.iter().any(|m| m.roughness > 0.0)
     }
 
     /// Whether some light shows its surface to rays.

@@ -54,9 +54,20 @@ impl Integrator<'_> {
                     position,
                     falloff,
                     cone,
+                    radius,
                 } => {
-                    let position = Vec3A::from(position);
-                    (position - p, Some(position), falloff, Some(cone))
+                    // A disc: one point of it per subsample, the shadow ray ending there.
+                    let sampled = if radius > 0.0 {
+                        cone.disc_point(position, radius, self.stream.next_2d())
+                    } else {
+                        Vec3A::from(position)
+                    };
+                    (
+                        sampled - p,
+                        Some(sampled),
+                        falloff,
+                        Some((cone, position, radius)),
+                    )
                 }
                 LightKind::Directional { direction } => {
                     (-Vec3A::from(direction), None, Falloff::None, None)
@@ -77,8 +88,14 @@ impl Integrator<'_> {
             }
             let distance = to_light.length();
             let l = to_light / distance;
+            // The cone is measured from the light's position, whatever point of its disc
+            // the shadow ray goes to: the disc softens shadows, not the cone's edge.
             let spot = match cone {
-                Some(cone) => cone.gain(-l),
+                Some((cone, _, 0.0)) => cone.gain(-l),
+                Some((cone, position, _)) => match (p - Vec3A::from(position)).try_normalize() {
+                    Some(w) => cone.gain(w),
+                    None => 0.0,
+                },
                 None => 1.0,
             };
             if spot == 0.0 {

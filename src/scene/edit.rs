@@ -115,6 +115,18 @@ impl Scene {
         })
     }
 
+    /// Sets the radius of spotlight `light`'s disc: 0 for a point (hard shadows), else a
+    /// length (soft shadows).
+    pub fn set_spot_radius(&mut self, light: usize, radius: f32) -> Result<(), EditError> {
+        self.edit_light(light, |l| {
+            let LightKind::Spot { radius: r, .. } = &mut l.kind else {
+                return Err("only a spotlight has a disc radius".into());
+            };
+            *r = radius;
+            Ok(())
+        })
+    }
+
     /// Sets the fog's density (`Fog::density`), in a scene that has fog.
     pub fn set_fog_density(&mut self, density: f32) -> Result<(), EditError> {
         let Some(fog) = &mut self.fog else {

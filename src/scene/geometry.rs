@@ -91,7 +91,7 @@ fn plane_reach(scene: &Scene) -> f32 {
         extent = extent.max(d);
     }
     for light in &scene.lights {
-        if let Some(p) = light.position() {
+        if let Some(p) = light.anchor() {
             extent = extent.max(p.abs().max_element());
         }
     }

@@ -40,6 +40,7 @@ impl Validator<'_> {
                 "direction",
                 "angle",
                 "softness",
+                "radius",
             ],
             "directional" => &["direction"],
             "area" => &[
@@ -108,6 +109,7 @@ impl Validator<'_> {
                     position: position("position", l.position)?,
                     falloff: self.falloff(at, l)?,
                     cone: SpotCone::new(direction()?, angle, softness),
+                    radius: l.radius.unwrap_or(0.0),
                 }
             }
             "directional" => LightKind::Directional {

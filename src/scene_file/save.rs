@@ -201,6 +201,12 @@ fn write_light(entry: &mut dyn TableLike, was: &Light, now: &Light, origin: DVec
         set(entry, "angle", number(b.angle));
         set(entry, "softness", number(b.softness));
     }
+    if let (LightKind::Spot { radius: a, .. }, LightKind::Spot { radius: b, .. }) =
+        (was.kind, now.kind)
+        && a != b
+    {
+        set(entry, "radius", number(b));
+    }
     if let (LightKind::Area { shape: a, .. }, LightKind::Area { shape: b, .. }) =
         (was.kind, now.kind)
         && a != b
@@ -669,6 +675,39 @@ material = \"mirror\"
         std::fs::write(&path, &saved.text).unwrap();
         let back = load_scene_file(&path).result.unwrap().scene;
         assert_eq!(back, Scene { camera, ..edited }, "{}", saved.text);
+    }
+
+    /// A spotlight's cone and disc edited in the panel are written back and read back.
+    #[test]
+    fn a_spotlights_cone_and_disc_are_saved() {
+        let text = "[camera]\neye = [0, 2, 8]\nlook_at = [0, 0, 0]\nfov = 40\n\n\
+                    [[lights]]\ntype = \"spot\" # the lamp\nposition = [0, 6, 0]\n\
+                    direction = [0, -1, 0]\nangle = 25\n\n\
+                    [[spheres]]\ncenter = [0, 0, 0]\nradius = 1\n";
+        let (_dir, path, loaded) = load(text);
+        let mut edited = loaded.scene.clone();
+        edited.set_spot(0, 35.0, 0.25).unwrap();
+        edited.set_spot_radius(0, 0.5).unwrap();
+        let saved = saved_text(&loaded, &edited, &loaded.scene.camera).unwrap();
+        for written in [
+            "angle = 35",
+            "softness = 0.25",
+            "radius = 0.5",
+            "# the lamp",
+        ] {
+            assert!(saved.text.contains(written), "{written}:\n{}", saved.text);
+        }
+        std::fs::write(&path, &saved.text).unwrap();
+        let back = load_scene_file(&path).result.unwrap().scene;
+        assert_eq!(back.lights, edited.lights);
+        // Back to a point: radius 0 is written, and reads back as the point it is.
+        edited.set_spot_radius(0, 0.0).unwrap();
+        assert!(edited.set_spot_radius(0, -1.0).is_err());
+        let saved = saved_text(&loaded, &edited, &loaded.scene.camera).unwrap();
+        std::fs::write(&path, &saved.text).unwrap();
+        let back = load_scene_file(&path).result.unwrap().scene;
+        assert_eq!(back.lights[0].position(), edited.lights[0].position());
+        assert!(back.lights[0].position().is_some());
     }
 
     /// A camera moved away from the file's eye is saved in world coordinates: the scene

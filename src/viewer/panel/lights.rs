@@ -63,7 +63,7 @@ impl PanelState {
                         });
                     }
                 }
-                LightKind::Spot { cone, .. } => {
+                LightKind::Spot { cone, radius, .. } => {
                     let (mut angle, mut softness) = (cone.angle, cone.softness);
                     let a = ui.add(
                         Slider::new(&mut angle, prism::limits::SPOT_ANGLE)
@@ -79,6 +79,19 @@ impl PanelState {
                     if a.changed() || b.changed() {
                         self.edit(changes, format!("light {i} cone"), |s| {
                             s.set_spot(i, angle, softness)
+                        });
+                    }
+                    // 0: a point and hard shadows; above: a disc and soft ones.
+                    let mut r = radius;
+                    let d = ui.add(
+                        DragValue::new(&mut r)
+                            .speed((radius * 0.01).max(1e-3))
+                            .range(0.0..=prism::limits::MAX_COORDINATE as f32)
+                            .prefix("disc radius "),
+                    );
+                    if d.changed() {
+                        self.edit(changes, format!("light {i} disc radius"), |s| {
+                            s.set_spot_radius(i, r)
                         });
                     }
                 }
