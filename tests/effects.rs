@@ -406,8 +406,8 @@ fn fog_fades_each_segment_by_its_length() {
     assert!(c.max_element() < 1e-6, "{c}");
 }
 
-/// Every effect at once, at scales from 10⁻³ to 10³ and far from the origin: the same
-/// image, and no NaN.
+/// Every effect at once (a marble pattern among them), at scales from 10⁻³ to 10³ and far
+/// from the origin: the same image, and no NaN.
 #[test]
 fn effects_render_the_same_at_every_scale() {
     let scene = load(
@@ -417,7 +417,9 @@ fn effects_render_the_same_at_every_scale() {
          [[lights]]\ntype = \"area\"\ncorner = [-1, 4, -1]\nedge_u = [2, 0, 0]\nedge_v = [0, 0, 2]\n\
          [[lights]]\ntype = \"sphere\"\nposition = [3, 3, 2]\nradius = 0.4\nfalloff = \"inverse_square\"\nintensity = 12\n\
          [[lights]]\ntype = \"spot\"\nposition = [-3, 4, 2]\ndirection = [0.5, -1, -0.3]\nangle = 25\nsoftness = 0.4\nradius = 0.3\n\
-         [materials.glossy]\ncolor = [0.6, 0.2, 0.2]\nreflectivity = 0.5\nroughness = 0.3\n\
+         [textures.marble]\ntype = \"marble\"\nscale = 0.4\nturbulence = 1.5\n\
+         color_map = [{ at = 0, color = [0.9, 0.9, 0.9] }, { at = 1, color = [0.2, 0.1, 0.1] }]\n\
+         [materials.glossy]\ntexture = \"marble\"\nreflectivity = 0.5\nroughness = 0.3\n\
          [materials.gold]\ncolor = [0.2, 0.2, 0.1]\nreflectivity = 0.8\nconductor = [1, 0.78, 0.34]\n\
          [materials.glass]\ntransparency = 0.9\nreflectivity = 0.1\neta = 1.5\nfresnel = true\nabsorption = [0.5, 0.1, 0.1]\n\
          [[planes]]\npoint = [0, 0, 0]\nnormal = [0, 1, 0]\n\

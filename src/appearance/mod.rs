@@ -5,12 +5,14 @@ mod background;
 mod fog;
 mod light;
 mod material;
+mod pattern;
 mod texture;
 
 pub use background::Background;
 pub use fog::{Fog, FogKind};
 pub use light::{AreaShape, Falloff, Light, LightKind, MAX_FALLOFF_GAIN, SpotCone};
 pub use material::{Material, fresnel_reflectance, reflect, refract, schlick_reflectance};
+pub use pattern::{ColorMap, MAX_COLOR_STOPS, MAX_OCTAVES, MAX_TURBULENCE, Pattern, PatternKind};
 pub use texture::{ImageTexture, Texture, TextureError, UvTransform};
 
 use glam::{Vec3, Vec3A};

@@ -1,6 +1,7 @@
 //! Surface colour as a function of position: solid colours, the seed's procedural patterns,
 //! and bilinearly filtered images.
 
+use super::pattern::Pattern;
 use glam::{Vec3, Vec3A};
 use std::path::Path;
 use std::sync::Arc;
@@ -276,6 +277,8 @@ pub enum Texture {
         /// The unit direction across the bands.
         direction: Vec3,
     },
+    /// A procedural pattern (noise, marble, wood, …) in the object's own space.
+    Pattern(Arc<Pattern>),
     /// An image, looked up at the shape's (u, v).
     Image {
         /// The texels.
@@ -357,6 +360,7 @@ impl Texture {
                 let band = floor_to_int(local.dot((*direction).into()) / *width);
                 colors[(band & 1) as usize].into()
             }
+            Texture::Pattern(pattern) => pattern.eval(local),
             Texture::Image {
                 image,
                 uv: transform,
@@ -379,6 +383,7 @@ impl Texture {
             Texture::Checker { colors, .. } | Texture::Stripes { colors, .. } => {
                 (colors[0] + colors[1]) * 0.5
             }
+            Texture::Pattern(pattern) => pattern.map.mean(),
             Texture::Image { image, .. } => image.mean(),
         }
     }
@@ -400,6 +405,7 @@ impl Texture {
                 width: width * factor,
                 direction: *direction,
             },
+            Texture::Pattern(pattern) => Texture::Pattern(Arc::new(pattern.scaled(factor))),
             other => other.clone(),
         }
     }

@@ -4,7 +4,9 @@
 use super::error::SceneError;
 use super::fixed_array::Fixed;
 use super::validator::{Item, V3, Validator};
-use crate::appearance::{ImageTexture, Texture, UvTransform};
+use crate::appearance::{
+    ColorMap, ImageTexture, MAX_OCTAVES, MAX_TURBULENCE, Pattern, PatternKind, Texture, UvTransform,
+};
 use crate::limits;
 use crate::messages::{did_you_mean, number, quoted};
 use glam::Vec3;
@@ -29,6 +31,18 @@ pub(super) struct TextureDef {
     pub(super) uv_scale: Option<toml::Value>,
     pub(super) uv_offset: Option<Fixed<f32, 2>>,
     pub(super) uv_rotate: Option<f32>,
+    pub(super) scale: Option<f32>,
+    pub(super) turbulence: Option<f32>,
+    pub(super) octaves: Option<i64>,
+    pub(super) color_map: Option<Vec<ColorStopDef>>,
+}
+
+/// One stop of a pattern's colour map: `{ at = 0.5, color = [r, g, b] }`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct ColorStopDef {
+    at: f32,
+    color: V3,
 }
 
 impl Validator<'_> {
@@ -96,14 +110,26 @@ impl Validator<'_> {
             "image" => ("image", &["path", "uv_scale", "uv_offset", "uv_rotate"]),
             "checker" => ("checker", &["colors", "size", "axes"]),
             "stripes" => ("stripes", &["colors", "width", "direction"]),
+            "gradient" => (
+                "gradient",
+                &["scale", "turbulence", "octaves", "color_map", "direction"],
+            ),
+            other if PatternKind::NAMES.contains(&other) => {
+                (other, &["scale", "turbulence", "octaves", "color_map"])
+            }
             other => {
+                let known = ["image", "checker", "stripes"]
+                    .into_iter()
+                    .chain(PatternKind::NAMES);
                 return Err(self.field_error(
                     &at,
                     "type",
                     format!(
-                        "unknown texture type {} (expected image, checker or stripes){}",
+                        "unknown texture type {} (expected image, checker, stripes, or a \
+                         pattern: {}){}",
                         quoted(other),
-                        did_you_mean(other, ["image", "checker", "stripes"])
+                        PatternKind::NAMES.join(", "),
+                        did_you_mean(other, known)
                     ),
                 ));
             }
@@ -118,6 +144,10 @@ impl Validator<'_> {
             ("uv_scale", t.uv_scale.is_some()),
             ("uv_offset", t.uv_offset.is_some()),
             ("uv_rotate", t.uv_rotate.is_some()),
+            ("scale", t.scale.is_some()),
+            ("turbulence", t.turbulence.is_some()),
+            ("octaves", t.octaves.is_some()),
+            ("color_map", t.color_map.is_some()),
         ];
         if let Some((field, _)) = given.iter().find(|(f, g)| *g && !takes.contains(f)) {
             return Err(self.field_error(
@@ -180,7 +210,7 @@ impl Validator<'_> {
                     axes,
                 })
             }
-            _ => {
+            "stripes" => {
                 let width = self.length(&at, "width", require("width", t.width)?)?;
                 let d = self.point(
                     &at,
@@ -196,7 +226,54 @@ impl Validator<'_> {
                     direction,
                 })
             }
+            pattern => self.pattern(&at, pattern, t),
         }
+    }
+
+    /// A procedural pattern's texture: its `scale`, `turbulence`, `octaves`, `color_map`
+    /// and a gradient's `direction`.
+    fn pattern(&self, at: &Item, name: &str, t: &TextureDef) -> Result<Texture, SceneError> {
+        let direction = match t.direction {
+            None => Vec3::X,
+            Some(d) => {
+                let d = self.point(at, "direction", d)?;
+                crate::numerics::try_normalize(d).ok_or_else(|| {
+                    self.field_error(at, "direction", "`direction` has zero length")
+                })?
+            }
+        };
+        let kind = PatternKind::named(name, direction).expect("the type was matched");
+        let scale = self.length(at, "scale", t.scale.unwrap_or(1.0))?;
+        let default_turbulence = match kind {
+            PatternKind::Marble | PatternKind::Wood | PatternKind::Agate => 1.0,
+            _ => 0.0,
+        };
+        let turbulence = self.in_range(
+            at,
+            "turbulence",
+            t.turbulence.unwrap_or(default_turbulence),
+            0.0,
+            MAX_TURBULENCE,
+        )?;
+        let octaves = self.count(at, "octaves", t.octaves.unwrap_or(6), 1, MAX_OCTAVES as i64)?;
+        let map = match &t.color_map {
+            None => ColorMap::grey(),
+            Some(stops) => {
+                let mut read = Vec::with_capacity(stops.len());
+                for stop in stops {
+                    read.push((stop.at, self.reflectance(at, "color_map", stop.color)?));
+                }
+                ColorMap::new(read)
+                    .map_err(|e| self.field_error(at, "color_map", format!("`color_map`: {e}")))?
+            }
+        };
+        Ok(Texture::Pattern(Arc::new(Pattern {
+            kind,
+            scale,
+            turbulence,
+            octaves,
+            map,
+        })))
     }
 }
 

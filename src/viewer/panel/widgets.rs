@@ -82,6 +82,7 @@ pub(super) fn texture_kind(t: &Texture) -> &'static str {
         Texture::Solid(_) => "solid",
         Texture::Checker { .. } => "checker",
         Texture::Stripes { .. } => "stripes",
+        Texture::Pattern(pattern) => pattern.kind.name(),
         Texture::Image { .. } => "image",
     }
 }

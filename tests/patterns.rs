@@ -1,0 +1,129 @@
+//! Procedural patterns in scene files: every bad value refused with its line and field, the
+//! example scene's patterns drawn the same on any number of threads, and a pattern that
+//! moves with its object.
+
+mod common;
+
+use prism::render::{RenderSettings, fraction_differing};
+use prism::scene_file::parse_scene;
+use std::path::Path;
+
+const SPHERE: &str = "[camera]\neye = [0, 0, 0]\nfov = 40\n\n\
+                      [[spheres]]\ncenter = [0, 0, -5]\nradius = 1\nmaterial = \"m\"\n\n\
+                      [materials.m]\ntexture = \"p\"\n\n[textures.p]\n";
+
+#[test]
+fn every_bad_pattern_is_refused_with_its_line_and_field() {
+    let cases = [
+        ("type = \"marbel\" # <-", "did you mean \"marble\"?"),
+        ("type = \"marble\"\nscale = 0 # <-", "`scale`"),
+        (
+            "type = \"marble\"\nturbulence = 20 # <-",
+            "`turbulence` must lie in",
+        ),
+        (
+            "type = \"wood\"\nturbulence = -1 # <-",
+            "`turbulence` must lie in",
+        ),
+        (
+            "type = \"noise\"\noctaves = 0 # <-",
+            "`octaves` must lie in 1..=10",
+        ),
+        (
+            "type = \"noise\"\noctaves = 11 # <-",
+            "`octaves` must lie in 1..=10",
+        ),
+        (
+            "type = \"marble\"\nwidth = 2 # <-",
+            "`width` does not apply to a marble",
+        ),
+        (
+            "type = \"marble\"\ndirection = [1, 0, 0] # <-",
+            "`direction` does not apply to a marble",
+        ),
+        (
+            "type = \"gradient\"\ndirection = [0, 0, 0] # <-",
+            "`direction` has zero length",
+        ),
+        (
+            "type = \"cells\"\ncolor_map = [{ at = 0, color = [1, 1, 1] }] # <-",
+            "2 to 16 stops, got 1",
+        ),
+        (
+            "type = \"cells\"\ncolor_map = [{ at = 0.5, color = [1, 1, 1] }, { at = 0.2, color = [0, 0, 0] }] # <-",
+            "stop 1: `at` 0.2 comes before",
+        ),
+        (
+            "type = \"cells\"\ncolor_map = [{ at = 0, color = [1, 1, 1] }, { at = 1.5, color = [0, 0, 0] }] # <-",
+            "stop 1: `at` must lie in 0..=1",
+        ),
+        (
+            "type = \"granite\"\ncolor_map = [{ at = 0, color = [2, 1, 1] }, { at = 1, color = [0, 0, 0] }] # <-",
+            "color_map",
+        ),
+    ];
+    for (table, message) in cases {
+        let text = format!("{SPHERE}{table}\n");
+        let error = parse_scene(&text, Path::new("p.toml"), Path::new(".")).unwrap_err();
+        let shown = error.to_string();
+        assert!(shown.contains(message), "{table}: {shown}");
+        assert!(shown.contains("textures.p"), "{shown}");
+        let marked = text.lines().position(|l| l.contains("# <-")).unwrap() + 1;
+        assert_eq!(error.line(), Some(marked), "{shown}");
+    }
+    // A stop with a field of another name is a syntax error at that stop.
+    let text =
+        format!("{SPHERE}type = \"cells\"\ncolor_map = [{{ at = 0, colour = [1, 1, 1] }}]\n");
+    let shown = parse_scene(&text, Path::new("p.toml"), Path::new("."))
+        .unwrap_err()
+        .to_string();
+    assert!(shown.contains("colour"), "{shown}");
+}
+
+fn example() -> prism::scene::Scene {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/scenes/patterns.toml");
+    prism::scene_file::load_scene(Path::new(path)).unwrap()
+}
+
+/// The example's patterns: the objects show many colours (the patterns, not flat ones), and
+/// the image is the same on one thread as on two.
+#[test]
+fn the_example_patterns_are_the_same_on_any_number_of_threads() {
+    let scene = example();
+    let settings = RenderSettings::new(240, 135, 1);
+    let on = |threads: usize| {
+        prism::render::thread_pool(Some(threads))
+            .unwrap()
+            .install(|| common::render_scene(&scene, settings))
+    };
+    let one = on(1);
+    assert_eq!(one, on(2));
+    let colours: std::collections::HashSet<[u8; 3]> = one.pixels().map(|p| p.0).collect();
+    assert!(colours.len() > 2000, "{} colours", colours.len());
+}
+
+/// A pattern is fixed to its object: a ball and the camera moved together show the same
+/// image; the ball moved alone shows its marble elsewhere.
+#[test]
+fn a_pattern_moves_with_its_object() {
+    let text = |ball: f32, eye: f32| {
+        format!(
+            "[camera]\neye = [{eye}, 0, 10]\nlook_at = [{eye}, 0, 0]\nfov = 30\n\
+             [render]\nambient = [1, 1, 1]\nbackground = [0, 0, 0]\n\
+             [textures.m]\ntype = \"marble\"\nscale = 0.3\nturbulence = 2\n\
+             [materials.m]\ntexture = \"m\"\nambient = 1\ndiffuse = 0\nspecular = 0\n\
+             [[spheres]]\ncenter = [{ball}, 0, 0]\nradius = 1\nmaterial = \"m\"\n"
+        )
+    };
+    let render = |ball: f32, eye: f32| {
+        let scene = parse_scene(&text(ball, eye), Path::new("m.toml"), Path::new(".")).unwrap();
+        common::render_scene(&scene, RenderSettings::new(160, 120, 1))
+    };
+    let here = render(0.0, 0.0);
+    assert_eq!(
+        here,
+        render(0.375, 0.375),
+        "moved with the camera: the same image"
+    );
+    assert!(fraction_differing(&here, &render(0.375, 0.0), 8) > 0.05);
+}
