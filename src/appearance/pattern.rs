@@ -1,5 +1,5 @@
-//! Procedural (solid) patterns, POV-Ray's kind: a value from 0 to 1 at each point of an
-//! object's own space, from gradient noise (Perlin's improved noise, 2002) summed over
+//! Procedural (solid) patterns, POV-Ray's kind: a value from 0 to 1 at each object-local
+//! position (measured from the object's origin), from gradient noise (Perlin's improved noise, 2002) summed over
 //! octaves, looked up in a colour map. A pattern is a function of the point alone: the same
 //! at any thread count, and the same image at any scale when its `scale` scales with the
 //! scene.
@@ -153,7 +153,7 @@ pub struct Pattern {
 }
 
 impl Pattern {
-    /// The colour at `local`, a point relative to the object's origin.
+    /// The colour at `local`, a position relative to the object's origin.
     #[inline]
     pub fn eval(&self, local: Vec3A) -> Vec3A {
         self.map.at(self.value(local / self.scale))
