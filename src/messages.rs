@@ -85,6 +85,8 @@ pub fn plain_type_words(message: &str) -> String {
     ] {
         out = out.replace(&format!("expected {rust}"), &format!("expected {plain}"));
     }
+    // serde's word for a list of any length (a colour map, animation keys, vertices).
+    out = out.replace("expected a sequence", "expected a list");
     if let Some(rest) = out.strip_prefix("invalid length ")
         && let Some((count, expected)) = rest.split_once(", expected an array of ")
         && count.parse::<usize>().is_ok()
@@ -330,6 +332,10 @@ mod tests {
         assert_eq!(
             plain_type_words("unknown field `raduis`, expected one of `center`, `radius`"),
             "unknown field `raduis`, expected one of `center`, `radius`; did you mean \"radius\"?"
+        );
+        assert_eq!(
+            plain_type_words("invalid type: integer `5`, expected a sequence"),
+            "invalid type: integer `5`, expected a list"
         );
     }
 

@@ -155,6 +155,20 @@ impl SampleStream {
     }
 }
 
+/// The point of the disc of `radius` about `center`, facing along unit `normal`, that
+/// sample `u` (in [0, 1)²) stands for: stratified samples stay stratified over the disc.
+#[inline]
+pub fn disc_point(
+    center: glam::Vec3A,
+    normal: glam::Vec3,
+    radius: f32,
+    u: (f32, f32),
+) -> glam::Vec3A {
+    let (t, b) = crate::numerics::orthonormal_basis(normal);
+    let (dx, dy) = concentric_disc(u);
+    center + (glam::Vec3A::from(t) * dx + glam::Vec3A::from(b) * dy) * radius
+}
+
 /// Shirley and Chiu's concentric map of the unit square onto the unit disc: it keeps areas
 /// and keeps nearby points nearby, so a stratified square stays stratified on the disc.
 #[inline]

@@ -207,15 +207,14 @@ fn left_handed_scenes_render_as_povray_shows_them() {
     assert!(differing(&mirrored) > 1000, "{}", differing(&mirrored));
 }
 
-/// A white matte floor and a black ball under a 2 × 2 area light, lit by nothing else:
-/// prism (256 light samples at each pixel's centre) against POV-Ray's `area_light` (a 33 × 33
-/// grid of point lights sharing its colour, each lighting by its own direction:
-/// `area_illumination on`). The penumbra and the light around it must match; a light a fifth
-/// larger in prism alone must not. (The ball is black because at its terminator, where part
-/// of the light lies below its horizon, POV-Ray is darker than the exact integral of the light
-/// over the rectangle by up to ten 8-bit levels, and prism is within one of it.)
-#[test]
-fn area_light_soft_shadows_match_povrays() {
+/// A white matte floor and a black ball lit by nothing but a soft light, POV-Ray's
+/// `pov_light` against prism's `prism_light(size)` (TOML, the light `size` times as large),
+/// at 256 samples at each pixel's centre: the penumbra and the light around it must match at
+/// size 1 (mean difference under 0.4 levels, under 0.6% of pixels beyond 4), and a light a
+/// fifth larger must not (over 2% beyond 4). (The ball is black because at its terminator,
+/// where part of the light lies below its horizon, POV-Ray is darker than the exact integral
+/// of the light by up to ten 8-bit levels, and prism is within one of it.)
+fn soft_shadow_matches_povrays(what: &str, pov_light: &str, prism_light: impl Fn(f32) -> String) {
     if !povray_available() {
         return;
     }
@@ -225,26 +224,22 @@ fn area_light_soft_shadows_match_povrays() {
         "#version 3.7;\nglobal_settings {{ assumed_gamma 1.0 ambient_light 0 }}\n\
          camera {{ perspective location <0, 6, 7> look_at <0, 0.5, 0> right -x * {aspect} up y \
          angle 2 * degrees(atan(tan(radians(20)) * {aspect})) }}\n\
-         background {{ rgb 0 }}\n\
-         light_source {{ <0, 4, 0> color rgb 0.9 \
-         area_light <2, 0, 0>, <0, 0, 2>, 33, 33 area_illumination on }}\n\
+         background {{ rgb 0 }}\n{pov_light}\n\
          #declare F = finish {{ ambient 0 diffuse 1 specular 0 phong 0 }};\n\
          plane {{ y, 0 pigment {{ rgb 1 }} finish {{ F }} }}\n\
          sphere {{ <0.3, 1, 0.2>, 0.7 pigment {{ rgb 0 }} finish {{ F }} }}\n"
     );
     let reference = povray_render(&pov, w, h);
-    let differing = |half: f32| {
+    let differing = |size: f32| {
         let text = format!(
             "[camera]\neye = [0, 6, 7]\nlook_at = [0, 0.5, 0]\nfov = 40\n\
              [render]\nambient = [0, 0, 0]\nbackground = [0, 0, 0]\n\
-             [[lights]]\ntype = \"area\"\ncorner = [{c}, 4, {c}]\nedge_u = [{e}, 0, 0]\n\
-             edge_v = [0, 0, {e}]\ncolor = [0.9, 0.9, 0.9]\nvisible = false\n\
+             [[lights]]\n{}\n\
              [materials.white]\ncolor = [1, 1, 1]\nambient = 0\nspecular = 0\n\
              [materials.black]\ncolor = [0, 0, 0]\nambient = 0\nspecular = 0\n\
              [[planes]]\npoint = [0, 0, 0]\nnormal = [0, 1, 0]\nmaterial = \"white\"\n\
              [[spheres]]\ncenter = [0.3, 1, 0.2]\nradius = 0.7\nmaterial = \"black\"\n",
-            c = -half,
-            e = 2.0 * half
+            prism_light(size)
         );
         let ours = prism_render(&text, w, h, Some(256));
         let diffs: Vec<u8> = ours
@@ -258,91 +253,61 @@ fn area_light_soft_shadows_match_povrays() {
     };
     let (mean, far) = differing(1.0);
     println!(
-        "area light: mean difference {mean:.3} levels, {:.3}% of pixels beyond 4",
+        "{what}: mean difference {mean:.3} levels, {:.3}% of pixels beyond 4",
         far * 100.0
     );
     assert!(
         mean < 0.4 && far < 0.006,
-        "mean {mean:.3} levels, {:.3}% beyond 4",
+        "{what}: mean {mean:.3} levels, {:.3}% beyond 4",
         far * 100.0
     );
     let (mean, far) = differing(1.2);
     println!(
-        "a larger light: mean difference {mean:.3} levels, {:.3}% beyond 4",
+        "{what} a fifth larger: mean difference {mean:.3} levels, {:.3}% beyond 4",
         far * 100.0
     );
     assert!(
         far > 0.02,
-        "a larger light went unnoticed: {:.3}% beyond 4",
+        "{what} a fifth larger went unnoticed: {:.3}% beyond 4",
         far * 100.0
     );
 }
 
-/// The floor and black ball of the area light's test under a spotlight whose disc (radius 1,
-/// level, facing down its axis) casts the shadow: prism (256 samples of the disc at each
-/// pixel's centre) against POV-Ray's `spotlight` with a circular `area_light` (a 33 × 33 grid
-/// mapped onto the disc, `area_illumination on`). The cone is wide enough that all the floor
-/// seen is within its full light, so only the shadows are compared; a disc a fifth larger in
-/// prism alone must not match.
+/// A 2 × 2 area light against POV-Ray's `area_light`: a 33 × 33 grid of point lights sharing
+/// its colour, each lighting by its own direction (`area_illumination on`).
+#[test]
+fn area_light_soft_shadows_match_povrays() {
+    soft_shadow_matches_povrays(
+        "area light",
+        "light_source { <0, 4, 0> color rgb 0.9 \
+         area_light <2, 0, 0>, <0, 0, 2>, 33, 33 area_illumination on }",
+        |size| {
+            format!(
+                "type = \"area\"\ncorner = [{c}, 4, {c}]\nedge_u = [{e}, 0, 0]\n\
+                 edge_v = [0, 0, {e}]\ncolor = [0.9, 0.9, 0.9]\nvisible = false",
+                c = -size,
+                e = 2.0 * size
+            )
+        },
+    );
+}
+
+/// A spotlight whose disc (radius 1, level, facing down its axis) casts the shadow, against
+/// POV-Ray's `spotlight` with a circular `area_light` (the 33 × 33 grid mapped onto the
+/// disc). The cone is wide enough that all the floor seen is within its full light, so only
+/// the shadows are compared.
 #[test]
 fn spotlight_disc_soft_shadows_match_povrays() {
-    if !povray_available() {
-        return;
-    }
-    let (w, h) = (160u32, 120u32);
-    let aspect = w as f64 / h as f64;
-    let pov = format!(
-        "#version 3.7;\nglobal_settings {{ assumed_gamma 1.0 ambient_light 0 }}\n\
-         camera {{ perspective location <0, 6, 7> look_at <0, 0.5, 0> right -x * {aspect} up y \
-         angle 2 * degrees(atan(tan(radians(20)) * {aspect})) }}\n\
-         background {{ rgb 0 }}\n\
-         light_source {{ <0, 4, 0> color rgb 0.9 spotlight point_at <0, 0, 0> radius 80 \
+    soft_shadow_matches_povrays(
+        "spotlight disc",
+        "light_source { <0, 4, 0> color rgb 0.9 spotlight point_at <0, 0, 0> radius 80 \
          falloff 80 tightness 0 \
-         area_light <2, 0, 0>, <0, 0, 2>, 33, 33 circular area_illumination on }}\n\
-         #declare F = finish {{ ambient 0 diffuse 1 specular 0 phong 0 }};\n\
-         plane {{ y, 0 pigment {{ rgb 1 }} finish {{ F }} }}\n\
-         sphere {{ <0.3, 1, 0.2>, 0.7 pigment {{ rgb 0 }} finish {{ F }} }}\n"
-    );
-    let reference = povray_render(&pov, w, h);
-    let differing = |radius: f32| {
-        let text = format!(
-            "[camera]\neye = [0, 6, 7]\nlook_at = [0, 0.5, 0]\nfov = 40\n\
-             [render]\nambient = [0, 0, 0]\nbackground = [0, 0, 0]\n\
-             [[lights]]\ntype = \"spot\"\nposition = [0, 4, 0]\ndirection = [0, -1, 0]\n\
-             angle = 80\nradius = {radius}\ncolor = [0.9, 0.9, 0.9]\n\
-             [materials.white]\ncolor = [1, 1, 1]\nambient = 0\nspecular = 0\n\
-             [materials.black]\ncolor = [0, 0, 0]\nambient = 0\nspecular = 0\n\
-             [[planes]]\npoint = [0, 0, 0]\nnormal = [0, 1, 0]\nmaterial = \"white\"\n\
-             [[spheres]]\ncenter = [0.3, 1, 0.2]\nradius = 0.7\nmaterial = \"black\"\n"
-        );
-        let ours = prism_render(&text, w, h, Some(256));
-        let diffs: Vec<u8> = ours
-            .pixels()
-            .zip(reference.pixels())
-            .map(|(a, b)| (0..3).map(|c| a[c].abs_diff(b[c])).max().unwrap())
-            .collect();
-        let mean = diffs.iter().map(|&d| d as f64).sum::<f64>() / diffs.len() as f64;
-        let far = diffs.iter().filter(|&&d| d > 4).count() as f64 / diffs.len() as f64;
-        (mean, far)
-    };
-    let (mean, far) = differing(1.0);
-    println!(
-        "spotlight disc: mean difference {mean:.3} levels, {:.3}% of pixels beyond 4",
-        far * 100.0
-    );
-    assert!(
-        mean < 0.4 && far < 0.006,
-        "mean {mean:.3} levels, {:.3}% beyond 4",
-        far * 100.0
-    );
-    let (mean, far) = differing(1.2);
-    println!(
-        "a larger disc: mean difference {mean:.3} levels, {:.3}% beyond 4",
-        far * 100.0
-    );
-    assert!(
-        far > 0.02,
-        "a larger disc went unnoticed: {:.3}% beyond 4",
-        far * 100.0
+         area_light <2, 0, 0>, <0, 0, 2>, 33, 33 circular area_illumination on }",
+        |size| {
+            format!(
+                "type = \"spot\"\nposition = [0, 4, 0]\ndirection = [0, -1, 0]\n\
+                 angle = 80\nradius = {size}\ncolor = [0.9, 0.9, 0.9]"
+            )
+        },
     );
 }

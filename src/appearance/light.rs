@@ -94,9 +94,7 @@ impl AreaShape {
             AreaShape::Sphere { center, radius } => {
                 let c = Vec3A::from(center);
                 let w = crate::numerics::try_normalize((p - c).into()).unwrap_or(Vec3::Z);
-                let (t, b) = crate::numerics::orthonormal_basis(w);
-                let (dx, dy) = crate::sampler::concentric_disc(u);
-                c + (Vec3A::from(t) * dx + Vec3A::from(b) * dy) * radius
+                crate::sampler::disc_point(c, w, radius, u)
             }
         }
     }
@@ -232,15 +230,6 @@ pub struct SpotCone {
 }
 
 impl SpotCone {
-    /// The point of the disc of `radius` about `center`, facing along the axis, that sample
-    /// `u` (in [0, 1)²) stands for: stratified samples stay stratified over the disc.
-    #[inline]
-    pub fn disc_point(&self, center: Vec3, radius: f32, u: (f32, f32)) -> Vec3A {
-        let (t, b) = crate::numerics::orthonormal_basis(self.direction);
-        let (dx, dy) = crate::sampler::concentric_disc(u);
-        Vec3A::from(center) + (Vec3A::from(t) * dx + Vec3A::from(b) * dy) * radius
-    }
-
     /// A cone about unit `direction` of half-angle `angle` degrees (0..=90) whose edge fades over
     /// `softness` (0..=1) of it.
     pub fn new(direction: Vec3, angle: f32, softness: f32) -> Self {
@@ -423,13 +412,7 @@ impl Light {
     /// spotlight's position); None for a directional or an area light, or a spotlight with
     /// a disc.
     pub fn position(&self) -> Option<Vec3> {
-        match self.kind {
-            LightKind::Point { position, .. } => Some(position),
-            LightKind::Spot {
-                position, radius, ..
-            } => (radius == 0.0).then_some(position),
-            LightKind::Directional { .. } | LightKind::Area { .. } => None,
-        }
+        self.anchor().filter(|_| !self.is_soft())
     }
 
     /// A point light's or a spotlight's position, a disc's or not; None for a directional

@@ -56,18 +56,18 @@ impl Integrator<'_> {
                     cone,
                     radius,
                 } => {
-                    // A disc: one point of it per subsample, the shadow ray ending there.
-                    let sampled = if radius > 0.0 {
-                        cone.disc_point(position, radius, self.stream.next_2d())
+                    // A disc: one point of it per subsample, the shadow ray ending there;
+                    // its centre is kept to measure the cone from.
+                    let position = Vec3A::from(position);
+                    let (sampled, disc) = if radius > 0.0 {
+                        let u = self.stream.next_2d();
+                        let sampled =
+                            crate::sampler::disc_point(position, cone.direction, radius, u);
+                        (sampled, Some(position))
                     } else {
-                        Vec3A::from(position)
+                        (position, None)
                     };
-                    (
-                        sampled - p,
-                        Some(sampled),
-                        falloff,
-                        Some((cone, position, radius)),
-                    )
+                    (sampled - p, Some(sampled), falloff, Some((cone, disc)))
                 }
                 LightKind::Directional { direction } => {
                     (-Vec3A::from(direction), None, Falloff::None, None)
@@ -91,8 +91,8 @@ impl Integrator<'_> {
             // The cone is measured from the light's position, whatever point of its disc
             // the shadow ray goes to: the disc softens shadows, not the cone's edge.
             let spot = match cone {
-                Some((cone, _, 0.0)) => cone.gain(-l),
-                Some((cone, position, _)) => match (p - Vec3A::from(position)).try_normalize() {
+                Some((cone, None)) => cone.gain(-l),
+                Some((cone, Some(center))) => match (p - center).try_normalize() {
                     Some(w) => cone.gain(w),
                     None => 0.0,
                 },

@@ -259,9 +259,9 @@ impl ImageLayer {
         if cols == 0 || rows == 0 {
             return;
         }
-        let place = [left as i32, 0, 0, 0];
-        let bytes: Vec<u8> = place.iter().flat_map(|v| v.to_ne_bytes()).collect();
-        queue.write_buffer(&self.place, 0, &bytes);
+        let mut place = [0u8; 16];
+        place[..4].copy_from_slice(&(left as i32).to_ne_bytes());
+        queue.write_buffer(&self.place, 0, &place);
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, group, &[]);
         pass.set_scissor_rect(left, 0, cols, rows);
