@@ -147,6 +147,12 @@ pub const SAMPLES: RangeInclusive<u32> = 1..=65536;
 /// A glossy material's roughness: 0 is a mirror, 1 nearly diffuse.
 pub const ROUGHNESS: RangeInclusive<f32> = 0.0..=1.0;
 
+/// How far a bump map's white stands above its black, in scene units (0: flat).
+pub const BUMP_DEPTH: RangeInclusive<f32> = 0.0..=(MAX_COORDINATE as f32);
+
+/// What a normal map's tilt is multiplied by (0: flat, 1: the picture's own).
+pub const NORMAL_STRENGTH: RangeInclusive<f32> = 0.0..=16.0;
+
 /// A spotlight's half-angle, in degrees, from a pencil beam to every direction.
 pub const SPOT_ANGLE: RangeInclusive<f32> = 0.01..=180.0;
 

@@ -406,7 +406,7 @@ fn fog_fades_each_segment_by_its_length() {
     assert!(c.max_element() < 1e-6, "{c}");
 }
 
-/// Every effect at once (a marble pattern among them), at scales from 10⁻³ to 10³ and far
+/// Every effect at once (a marble pattern and bumps among them), at scales from 10⁻³ to 10³ and far
 /// from the origin: the same image, and no NaN.
 #[test]
 fn effects_render_the_same_at_every_scale() {
@@ -419,8 +419,9 @@ fn effects_render_the_same_at_every_scale() {
          [[lights]]\ntype = \"spot\"\nposition = [-3, 4, 2]\ndirection = [0.5, -1, -0.3]\nangle = 25\nsoftness = 0.4\nradius = 0.3\n\
          [textures.marble]\ntype = \"marble\"\nscale = 0.4\nturbulence = 1.5\n\
          color_map = [{ at = 0, color = [0.9, 0.9, 0.9] }, { at = 1, color = [0.2, 0.1, 0.1] }]\n\
-         [materials.glossy]\ntexture = \"marble\"\nreflectivity = 0.5\nroughness = 0.3\n\
-         [materials.gold]\ncolor = [0.2, 0.2, 0.1]\nreflectivity = 0.8\nconductor = [1, 0.78, 0.34]\n\
+         [textures.dents]\ntype = \"noise\"\nscale = 0.2\noctaves = 3\n\
+         [materials.glossy]\ntexture = \"marble\"\nreflectivity = 0.5\nroughness = 0.3\nbump = \"marble\"\nbump_depth = 0.03\n\
+         [materials.gold]\ncolor = [0.2, 0.2, 0.1]\nreflectivity = 0.8\nconductor = [1, 0.78, 0.34]\nbump = \"dents\"\nbump_depth = 0.02\n\
          [materials.glass]\ntransparency = 0.9\nreflectivity = 0.1\neta = 1.5\nfresnel = true\nabsorption = [0.5, 0.1, 0.1]\n\
          [[planes]]\npoint = [0, 0, 0]\nnormal = [0, 1, 0]\n\
          [[spheres]]\ncenter = [-1.5, 1, 0]\nradius = 1\nmaterial = \"glossy\"\n\

@@ -455,6 +455,77 @@ fn mtl_materials_map_onto_prisms() {
     );
 }
 
+/// MTL relief: `norm` is a normal map of strength `-bm`; `map_Bump` is a normal map too
+/// when its picture is bluish (as Blender writes one there), and otherwise a height map
+/// raising white `-bm` × 0.5% of the file's size (the cube's diagonal, 2√3).
+#[test]
+fn mtl_bump_and_normal_maps_become_relief() {
+    use prism::appearance::{Relief, Texture};
+    let dir = tempfile::tempdir().unwrap();
+    let save = |name: &str, rgb: [u8; 3]| {
+        image::RgbImage::from_pixel(4, 4, image::Rgb(rgb))
+            .save(dir.path().join(name))
+            .unwrap();
+    };
+    save("grey.png", [120, 120, 120]);
+    save("blue.png", [128, 128, 255]);
+    let obj = format!(
+        "mtllib m.mtl\nusemtl height\n{}usemtl normal\n{}usemtl blender\n{}",
+        "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\nf 1 4 3 2\nf 5 6 7 8\n",
+        "f 1 2 6 5\nf 4 8 7 3\n",
+        "f 1 5 8 4\nf 2 3 7 6\n"
+    );
+    let mtl = "newmtl height\nmap_Bump -bm 2 grey.png\n\
+               newmtl normal\nnorm -bm 0.5 blue.png\n\
+               newmtl blender\nmap_Bump -bm 1.0 blue.png\n";
+    std::fs::write(dir.path().join("cube.obj"), obj).unwrap();
+    std::fs::write(dir.path().join("m.mtl"), mtl).unwrap();
+    let scene_path = dir.path().join("scene.toml");
+    std::fs::write(
+        &scene_path,
+        format!("{CAMERA}[[meshes]]\npath = \"cube.obj\"\n"),
+    )
+    .unwrap();
+    let scene = load_scene(&scene_path).unwrap();
+    let relief = |part: &str| {
+        let object = scene
+            .objects
+            .iter()
+            .find(|o| o.name.ends_with(part))
+            .unwrap();
+        object.material.relief.clone().unwrap()
+    };
+    match relief("height") {
+        Relief::Bump {
+            height: Texture::Image { .. },
+            depth,
+        } => {
+            let want = 2.0 * 0.005 * 2.0 * 3f32.sqrt();
+            assert!((depth - want).abs() < 1e-6, "{depth} against {want}");
+        }
+        other => panic!("{other:?}"),
+    }
+    assert!(matches!(
+        relief("normal"),
+        Relief::NormalMap { strength: 0.5, .. }
+    ));
+    assert!(matches!(
+        relief("blender"),
+        Relief::NormalMap { strength: 1.0, .. }
+    ));
+    // A strength beyond the limit is refused at its line.
+    std::fs::write(
+        dir.path().join("m.mtl"),
+        "newmtl height\n\nnorm -bm 40 blue.png\n",
+    )
+    .unwrap();
+    let shown = load_scene(&scene_path).unwrap_err().to_string();
+    assert!(
+        shown.contains("m.mtl:3:") && shown.contains("strength of 40"),
+        "{shown}"
+    );
+}
+
 /// Every bad mesh, library and placement is refused with the file and line to fix.
 #[test]
 fn bad_meshes_and_placements_name_file_and_line() {

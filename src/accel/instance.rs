@@ -6,7 +6,7 @@
 use super::bvh::{Bvh, LeafCost};
 use crate::geometry::{
     Aabb, GROUP_WIDTH, GroupRay, HitDetail, Mesh, Ray, RayQuery, Shape, ShapeHit, SurfacePoint,
-    Transform, TriangleGroup,
+    Transform, TriangleGroup, UvFrame,
 };
 use glam::Vec3A;
 use std::sync::Arc;
@@ -158,6 +158,17 @@ impl Model {
             (_, detail) => unreachable!("hit {detail:?} does not belong to a mesh"),
         }
     }
+
+    #[inline]
+    fn uv_frame(&self, local: impl FnOnce() -> RayQuery, hit: &ShapeHit) -> UvFrame {
+        match (self, hit.detail) {
+            (Model::Mesh { mesh, .. }, HitDetail::Mesh { triangle, b }) => {
+                mesh.uv_frame(triangle, b)
+            }
+            (Model::Shape(shape), _) => shape.uv_frame(&shape.surface(&local(), hit), hit),
+            (_, detail) => unreachable!("hit {detail:?} does not belong to a mesh"),
+        }
+    }
 }
 
 /// A model placed in the scene by a transform.
@@ -252,6 +263,14 @@ impl Instance {
     #[inline]
     pub fn uv(&self, q: &RayQuery, hit: &ShapeHit) -> (f32, f32) {
         self.model.uv(|| self.local(q), hit)
+    }
+
+    /// The texture coordinates of `hit` and their tangents, carried into the scene's space.
+    #[inline]
+    pub fn uv_frame(&self, q: &RayQuery, hit: &ShapeHit) -> UvFrame {
+        self.model
+            .uv_frame(|| self.local(q), hit)
+            .mapped(|v| self.transform.vector_to_scene(v))
     }
 }
 

@@ -36,7 +36,7 @@ pub use light_buffer::MAX_OCCLUDERS;
 
 use crate::appearance::ShadowFilters;
 use crate::camera::CameraRays;
-use crate::geometry::{Aabb, Ray, RayQuery, ShapeHit, SurfacePoint};
+use crate::geometry::{Aabb, Ray, RayQuery, ShapeHit, SurfacePoint, UvFrame};
 use glam::{Vec3, Vec3A};
 use std::sync::Arc;
 
@@ -209,6 +209,15 @@ impl Accelerator {
         self.primitives[hit.primitive as usize]
             .surface
             .uv(q, surface, &hit.shape)
+    }
+
+    /// The texture coordinates of `surface` (the surface point of `hit` along `q`) and
+    /// their tangents, for relief.
+    #[inline]
+    pub fn uv_frame(&self, q: &RayQuery, surface: &SurfacePoint, hit: &Hit) -> UvFrame {
+        self.primitives[hit.primitive as usize]
+            .surface
+            .uv_frame(q, surface, &hit.shape)
     }
 
     /// The object `hit` is on.

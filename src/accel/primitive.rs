@@ -2,7 +2,7 @@
 //! shape in the scene's space or an instance of a model placed by a transform.
 
 use super::instance::Instance;
-use crate::geometry::{Aabb, RayQuery, Shape, ShapeHit, SurfacePoint};
+use crate::geometry::{Aabb, RayQuery, Shape, ShapeHit, SurfacePoint, UvFrame};
 use glam::Vec3A;
 use std::sync::Arc;
 
@@ -86,6 +86,15 @@ impl Surface {
         match self {
             Surface::Shape(shape) => shape.uv(surface, hit),
             Surface::Instance(instance) => instance.uv(q, hit),
+        }
+    }
+
+    /// The texture coordinates of `surface` and their tangents, in the scene's space.
+    #[inline]
+    pub fn uv_frame(&self, q: &RayQuery, surface: &SurfacePoint, hit: &ShapeHit) -> UvFrame {
+        match self {
+            Surface::Shape(shape) => shape.uv_frame(surface, hit),
+            Surface::Instance(instance) => instance.uv_frame(q, hit),
         }
     }
 

@@ -1,5 +1,6 @@
 //! Phong surface terms and the directions of mirror reflection and refraction.
 
+use super::relief::Relief;
 use super::texture::Texture;
 use crate::limits;
 use crate::messages::FieldProblem;
@@ -47,6 +48,8 @@ pub struct Material {
     /// reflection is tinted by Schlick's Fresnel curve from it, rising to white at grazing
     /// angles. None for the seed's untinted mirrors.
     pub conductor: Option<Vec3>,
+    /// Bumps or a normal map tilting the shading normal; None for a smooth surface.
+    pub relief: Option<Relief>,
 }
 
 impl Default for Material {
@@ -65,6 +68,7 @@ impl Default for Material {
             roughness: 0.0,
             absorption: Vec3::ZERO,
             conductor: None,
+            relief: None,
         }
     }
 }
@@ -149,7 +153,29 @@ impl Material {
             self.emission.to_array(),
             limits::MAX_RADIANCE,
             limits::RADIANCE_BOUND,
-        )
+        )?;
+        match &self.relief {
+            None => Ok(()),
+            Some(Relief::Bump { height, depth }) => {
+                if !matches!(height, Texture::Pattern(_) | Texture::Image { .. }) {
+                    return Err(FieldProblem::new(
+                        "bump",
+                        "a bump map's height comes from a pattern (noise, marble, …) or an \
+                         image; a solid colour, a checker or stripes is flat between its edges",
+                    ));
+                }
+                FieldProblem::check_range("bump_depth", *depth, &limits::BUMP_DEPTH)
+            }
+            Some(Relief::NormalMap { map, strength }) => {
+                if !matches!(map, Texture::Image { .. }) {
+                    return Err(FieldProblem::new(
+                        "normal_map",
+                        "a normal map is a picture: a texture of type \"image\"",
+                    ));
+                }
+                FieldProblem::check_range("normal_strength", *strength, &limits::NORMAL_STRENGTH)
+            }
+        }
     }
 
     /// How much of the light crossing this surface once goes on, tinted by its colour:

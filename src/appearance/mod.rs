@@ -6,6 +6,7 @@ mod fog;
 mod light;
 mod material;
 mod pattern;
+mod relief;
 mod texture;
 
 pub use background::Background;
@@ -13,6 +14,7 @@ pub use fog::{Fog, FogKind};
 pub use light::{AreaShape, Falloff, Light, LightKind, MAX_FALLOFF_GAIN, SpotCone};
 pub use material::{Material, fresnel_reflectance, reflect, refract, schlick_reflectance};
 pub use pattern::{ColorMap, MAX_COLOR_STOPS, MAX_OCTAVES, MAX_TURBULENCE, Pattern, PatternKind};
+pub use relief::Relief;
 pub use texture::{ImageTexture, Texture, TextureError, UvTransform};
 
 use glam::{Vec3, Vec3A};

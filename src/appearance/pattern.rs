@@ -189,6 +189,26 @@ impl Pattern {
         if v.is_nan() { 0.0 } else { v.clamp(0.0, 1.0) }
     }
 
+    /// How fast the brightness of its colour (the mean of red, green and blue) changes at
+    /// `local` (relative to the object's origin), per scene unit along each axis: central
+    /// differences, a step well inside the finest octave's features but not below the
+    /// point's own rounding. The colour map shapes a bump map's height as it does colour.
+    pub fn brightness_gradient(&self, local: Vec3A) -> Vec3A {
+        let p = local / self.scale;
+        // An eighth of the finest octave's wavelength, 2^−(octaves − 1), which granite
+        // makes four times finer still.
+        let finest = 0.5f32.powi(self.octaves as i32 + 4);
+        let step = finest.max(p.abs().max_element() * (1.0 / 4096.0)).min(0.05);
+        let brightness = |p: Vec3A| {
+            let c = self.map.at(self.value(p));
+            (c.x + c.y + c.z) * (1.0 / 3.0)
+        };
+        let slope = |axis: Vec3A| {
+            (brightness(p + axis * step) - brightness(p - axis * step)) / (2.0 * step)
+        };
+        Vec3A::new(slope(Vec3A::X), slope(Vec3A::Y), slope(Vec3A::Z)) / self.scale
+    }
+
     /// The same pattern in a scene scaled by `factor`.
     pub fn scaled(&self, factor: f32) -> Pattern {
         Pattern {

@@ -175,6 +175,21 @@ impl ImageTexture {
         top.lerp(bottom, fy)
     }
 
+    /// The brightness (the mean of red, green and blue, 0 to 1) at (u, v) and its slope
+    /// per unit of u and of v: central differences half a texel either way across the
+    /// bilinear lookup, which measure the slope between neighbouring texels exactly.
+    pub fn brightness_slope(&self, u: f32, v: f32) -> (f32, f32) {
+        let brightness = |u: f32, v: f32| {
+            let c = self.sample(u, v);
+            (c.x + c.y + c.z) * (1.0 / 3.0)
+        };
+        let (du, dv) = (0.5 / self.width as f32, 0.5 / self.height as f32);
+        (
+            (brightness(u + du, v) - brightness(u - du, v)) / (2.0 * du),
+            (brightness(u, v + dv) - brightness(u, v - dv)) / (2.0 * dv),
+        )
+    }
+
     /// The average colour of the image (used to tint light passing through it).
     pub fn mean(&self) -> Vec3 {
         // Summed in f64: a long f32 sum would drift.
@@ -322,6 +337,13 @@ impl UvTransform {
             offset,
             identity: false,
         }
+    }
+
+    /// How the picture's coordinates change with the surface's: the matrix (row by row)
+    /// of ∂(picture u, v)/∂(u, v).
+    #[inline]
+    pub fn jacobian(&self) -> [f32; 4] {
+        self.matrix
     }
 
     /// Where (u, v) lands in the picture.

@@ -6,6 +6,7 @@ use super::aabb::Aabb;
 use super::cylinder::{Cylinder, CylinderPart, crossing_count, nearest_candidate};
 use super::ray::Ray;
 use super::sphere::Sphere;
+use super::uv_frame::{UvFrame, along_meridian, around_y_axis};
 use glam::{Vec3, Vec3A};
 use std::f32::consts::PI;
 
@@ -109,6 +110,37 @@ impl Capsule {
         let u = 0.5 + rel.x.atan2(rel.z) / (2.0 * PI);
         let v = (rel.y + self.radius) / (self.height + 2.0 * self.radius);
         (u, v.clamp(0.0, 1.0))
+    }
+
+    /// The texture coordinates at `p` and their tangents. On an end, v still grows with
+    /// height: the point moves along the meridian as far as one unit of height takes it.
+    pub fn uv_frame(&self, p: Vec3A) -> UvFrame {
+        let rel = p - Vec3A::from(self.base);
+        let length = self.height + 2.0 * self.radius;
+        let end = if rel.y < 0.0 {
+            Some(rel)
+        } else if rel.y > self.height {
+            Some(rel - Vec3A::new(0.0, self.height, 0.0))
+        } else {
+            None
+        };
+        let per_height = match end {
+            None => Vec3A::Y,
+            // ∂p/∂λ over ∂y/∂λ, the meridian's climb; none at a pole.
+            Some(q) => {
+                let rho2 = q.x * q.x + q.z * q.z;
+                if rho2 > 0.0 {
+                    along_meridian(q) * (rho2.sqrt().recip())
+                } else {
+                    Vec3A::ZERO
+                }
+            }
+        };
+        UvFrame {
+            uv: self.uv(p),
+            dpdu: around_y_axis(rel),
+            dpdv: per_height * length,
+        }
     }
 
     /// The box around the capsule.

@@ -4,8 +4,9 @@
 //! with the discriminant formed in f64, where its products are exact.
 
 use super::aabb::Aabb;
-use super::cylinder::{CylinderPart, crossing_count, nearest_candidate};
+use super::cylinder::{CylinderPart, crossing_count, nearest_candidate, outward_from_y_axis};
 use super::ray::Ray;
+use super::uv_frame::{UvFrame, around_y_axis};
 use crate::numerics::gamma;
 use glam::{Vec2, Vec3, Vec3A};
 use std::f32::consts::PI;
@@ -153,6 +154,25 @@ impl Cone {
             CylinderPart::Top => Vec2::new(rel.x, rel.z).length() / self.top_radius,
         };
         (u, v.clamp(0.0, 1.0))
+    }
+
+    /// The texture coordinates at `p` on `part` and their tangents: up the side, the
+    /// point also moves out as the radius changes.
+    pub fn uv_frame(&self, p: Vec3A, part: CylinderPart) -> UvFrame {
+        let rel = p - Vec3A::from(self.base);
+        let out = outward_from_y_axis(rel);
+        let dpdv = match part {
+            CylinderPart::Side => {
+                out * (self.top_radius - self.radius) + Vec3A::new(0.0, self.height, 0.0)
+            }
+            CylinderPart::Bottom => out * self.radius,
+            CylinderPart::Top => out * self.top_radius,
+        };
+        UvFrame {
+            uv: self.uv(p, part),
+            dpdu: around_y_axis(rel),
+            dpdv,
+        }
     }
 
     /// The box around the cone.

@@ -3,6 +3,7 @@
 
 use super::aabb::Aabb;
 use super::ray::{Ray, RayQuery};
+use super::uv_frame::UvFrame;
 use crate::numerics::gamma;
 use glam::{Vec3, Vec3A};
 
@@ -112,6 +113,29 @@ impl Cuboid {
             (1, false) => (f.x, 1.0 - f.z),
             (_, true) => (f.x, 1.0 - f.y),
             (_, false) => (1.0 - f.x, 1.0 - f.y),
+        }
+    }
+
+    /// The texture coordinates at `p` on `face` and their tangents (constant on a face).
+    pub fn uv_frame(&self, p: Vec3A, face: CuboidFace) -> UvFrame {
+        let s = self.max - self.min;
+        let (x, y, z) = (
+            Vec3A::new(s.x, 0.0, 0.0),
+            Vec3A::new(0.0, s.y, 0.0),
+            Vec3A::new(0.0, 0.0, s.z),
+        );
+        let (dpdu, dpdv) = match (face.axis, face.upper) {
+            (0, true) => (-z, -y),
+            (0, false) => (z, -y),
+            (1, true) => (x, z),
+            (1, false) => (x, -z),
+            (_, true) => (x, -y),
+            (_, false) => (-x, -y),
+        };
+        UvFrame {
+            uv: self.uv(p, face),
+            dpdu,
+            dpdv,
         }
     }
 

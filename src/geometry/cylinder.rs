@@ -3,6 +3,7 @@
 
 use super::aabb::Aabb;
 use super::ray::Ray;
+use super::uv_frame::{UvFrame, around_y_axis};
 use crate::numerics::{gamma, stable_quadratic_roots};
 use glam::{Vec2, Vec3, Vec3A};
 use std::f32::consts::PI;
@@ -164,6 +165,20 @@ impl Cylinder {
         (u, v.clamp(0.0, 1.0))
     }
 
+    /// The texture coordinates at `p` on `part` and their tangents.
+    pub fn uv_frame(&self, p: Vec3A, part: CylinderPart) -> UvFrame {
+        let rel = p - Vec3A::from(self.base);
+        let dpdv = match part {
+            CylinderPart::Side => Vec3A::new(0.0, self.height, 0.0),
+            _ => outward_from_y_axis(rel) * self.radius,
+        };
+        UvFrame {
+            uv: self.uv(p, part),
+            dpdu: around_y_axis(rel),
+            dpdv,
+        }
+    }
+
     /// The box around the cylinder.
     pub fn bounds(&self) -> Aabb {
         Aabb {
@@ -171,6 +186,12 @@ impl Cylinder {
             max: self.base + Vec3::new(self.radius, self.height, self.radius),
         }
     }
+}
+
+/// The unit direction away from the y axis at `rel` (horizontal); zero on the axis.
+#[inline]
+pub(super) fn outward_from_y_axis(rel: Vec3A) -> Vec3A {
+    Vec3A::new(rel.x, 0.0, rel.z).normalize_or_zero()
 }
 
 /// How many of a cylinder's, cone's or capsule's candidates lie in (0, t_max). A line

@@ -3,6 +3,7 @@
 
 use super::aabb::Aabb;
 use super::ray::Ray;
+use super::uv_frame::UvFrame;
 use crate::numerics::{gamma, orthonormal_basis};
 use glam::{Vec3, Vec3A};
 
@@ -69,6 +70,11 @@ impl Disc {
     pub fn uv(&self, p: Vec3A) -> (f32, f32) {
         let d = Vec3::from(p) - self.center;
         (0.5 + d.dot(self.u_axis), 0.5 - d.dot(self.v_axis))
+    }
+
+    /// The texture coordinates at `p` and their tangents (constant over the disc).
+    pub fn uv_frame(&self, p: Vec3A) -> UvFrame {
+        UvFrame::planar(self.uv(p), self.u_axis.into(), self.v_axis.into())
     }
 
     /// The box around the disc: on each axis, its radius times the sine of the normal's

@@ -6,6 +6,7 @@ use super::aabb::Aabb;
 use super::ray::RayQuery;
 use super::shape::SurfacePoint;
 use super::triangle::{TriangleHit, barycentric_point, watertight};
+use super::uv_frame::UvFrame;
 use glam::{Vec2, Vec3, Vec3A};
 use std::collections::HashMap;
 
@@ -263,6 +264,37 @@ impl Mesh {
         (uv.x, uv.y)
     }
 
+    /// The texture coordinates at weights `b` of triangle `i` and their tangents, constant
+    /// over the triangle. Where its corners' coordinates do not span an area (a seam
+    /// squeezed to a line), any frame about the normal stands in.
+    pub fn uv_frame(&self, i: u32, b: [f32; 3]) -> UvFrame {
+        let p = self.corners(i);
+        let (e1, e2) = (p[1] - p[0], p[2] - p[0]);
+        if self.uvs.is_empty() {
+            return UvFrame {
+                uv: (b[1], b[2]),
+                dpdu: e1,
+                dpdv: e2,
+            };
+        }
+        let [t0, t1, t2] = self.triangles[i as usize].map(|v| self.uvs[v as usize]);
+        let (d1, d2) = (t1 - t0, t2 - t0);
+        let det = d1.x * d2.y - d1.y * d2.x;
+        let (dpdu, dpdv) = if det != 0.0 && det.is_finite() {
+            let r = det.recip();
+            ((e1 * d2.y - e2 * d1.y) * r, (e2 * d1.x - e1 * d2.x) * r)
+        } else {
+            let (t, b) =
+                crate::numerics::orthonormal_basis(e1.cross(e2).normalize_or_zero().into());
+            (t.into(), b.into())
+        };
+        UvFrame {
+            uv: self.uv(i, b),
+            dpdu,
+            dpdv,
+        }
+    }
+
     /// The mesh with every triangle split into four at its edges' midpoints (shared edges
     /// share their midpoint, so the result is as closed as the original); normals and
     /// texture coordinates are interpolated. For making large meshes for benchmarks.
@@ -334,6 +366,46 @@ fn lifted_point(
 mod tests {
     use super::*;
     use crate::geometry::Ray;
+
+    /// A triangle's texture tangents carry its corners' coordinates: the point at
+    /// weights b moved by Δu·∂p/∂u + Δv·∂p/∂v is the point whose coordinates are (u, v) +
+    /// (Δu, Δv), checked at every corner of a triangle with a sheared, turned map.
+    #[test]
+    fn a_triangle_frame_follows_its_corner_coordinates() {
+        let positions = vec![
+            Vec3::new(0.2, 0.1, -3.0),
+            Vec3::new(2.0, 0.4, -2.5),
+            Vec3::new(0.7, 1.9, -3.2),
+        ];
+        let uvs = vec![
+            Vec2::new(0.1, 0.9),
+            Vec2::new(0.6, 0.7),
+            Vec2::new(0.3, 0.2),
+        ];
+        let mesh = Mesh::new(positions.clone(), vec![], uvs.clone(), vec![[0, 1, 2]]).unwrap();
+        let frame = mesh.uv_frame(0, [1.0 / 3.0; 3]);
+        for k in 0..3 {
+            let (from, to) = (k, (k + 1) % 3);
+            let duv = uvs[to] - uvs[from];
+            let moved = Vec3A::from(positions[from]) + frame.dpdu * duv.x + frame.dpdv * duv.y;
+            assert!(
+                (moved - Vec3A::from(positions[to])).length() < 1e-5,
+                "{k}: {moved}"
+            );
+        }
+        // Without coordinates, (u, v) are the second and third corners' weights.
+        let plain = Mesh::new(positions.clone(), vec![], vec![], vec![[0, 1, 2]]).unwrap();
+        let f = plain.uv_frame(0, [0.2, 0.3, 0.5]);
+        assert_eq!(f.uv, (0.3, 0.5));
+        assert_eq!(f.dpdu, Vec3A::from(positions[1] - positions[0]));
+        // Coordinates squeezed to a line still give a frame in the triangle's plane.
+        let line = vec![Vec2::ZERO, Vec2::new(0.5, 0.5), Vec2::new(1.0, 1.0)];
+        let squeezed = Mesh::new(positions, vec![], line, vec![[0, 1, 2]]).unwrap();
+        let f = squeezed.uv_frame(0, [1.0 / 3.0; 3]);
+        let n = squeezed.surface(0, [1.0 / 3.0; 3]).normal;
+        assert!(f.dpdu.dot(n).abs() < 1e-6 && f.dpdv.dot(n).abs() < 1e-6);
+        assert!((f.dpdu.cross(f.dpdv).length() - 1.0).abs() < 1e-5);
+    }
 
     /// A unit square in z = 0 of two triangles, corners counter-clockwise from (0, 0).
     fn square() -> Mesh {

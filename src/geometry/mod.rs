@@ -16,6 +16,7 @@ mod torus;
 mod transform;
 mod triangle;
 mod triangle_group;
+mod uv_frame;
 
 pub use aabb::Aabb;
 pub use capsule::Capsule;
@@ -31,3 +32,4 @@ pub use torus::Torus;
 pub use transform::Transform;
 pub use triangle::{Triangle, TriangleHit};
 pub use triangle_group::{GROUP_WIDTH, GroupRay, TriangleGroup};
+pub use uv_frame::UvFrame;

@@ -10,6 +10,7 @@ use super::ray::RayQuery;
 use super::sphere::Sphere;
 use super::torus::Torus;
 use super::triangle::{Triangle, TriangleHit};
+use super::uv_frame::UvFrame;
 use glam::Vec3A;
 
 /// Every kind of shape a primitive can be (a closed set).
@@ -231,6 +232,27 @@ impl Shape {
             (Shape::Cone(c), HitDetail::Cone { part }) => c.uv(surface.point, part),
             (Shape::Torus(tor), _) => tor.uv(surface.point),
             (Shape::Capsule(c), _) => c.uv(surface.point),
+            (shape, detail) => unreachable!("hit {detail:?} does not belong to {shape:?}"),
+        }
+    }
+
+    /// The texture coordinates of a surface point and their tangents ([`UvFrame`]), for
+    /// relief; computed only for materials that have it.
+    pub fn uv_frame(&self, surface: &SurfacePoint, hit: &ShapeHit) -> UvFrame {
+        let p = surface.point;
+        match (self, hit.detail) {
+            (Shape::Sphere(s), _) => s.uv_frame(surface.normal),
+            (Shape::Triangle(tri), HitDetail::Triangle { b }) => UvFrame {
+                uv: (b[1], b[2]),
+                dpdu: tri.p[1] - tri.p[0],
+                dpdv: tri.p[2] - tri.p[0],
+            },
+            (Shape::Cylinder(c), HitDetail::Cylinder { part }) => c.uv_frame(p, part),
+            (Shape::Cuboid(b), HitDetail::Cuboid { face }) => b.uv_frame(p, face),
+            (Shape::Disc(d), _) => d.uv_frame(p),
+            (Shape::Cone(c), HitDetail::Cone { part }) => c.uv_frame(p, part),
+            (Shape::Torus(tor), _) => tor.uv_frame(p),
+            (Shape::Capsule(c), _) => c.uv_frame(p),
             (shape, detail) => unreachable!("hit {detail:?} does not belong to {shape:?}"),
         }
     }

@@ -2,6 +2,7 @@
 
 use super::aabb::Aabb;
 use super::ray::Ray;
+use super::uv_frame::{UvFrame, along_meridian, around_y_axis};
 use crate::numerics::{gamma, stable_quadratic_roots};
 use glam::{Vec3, Vec3A};
 use std::f32::consts::PI;
@@ -113,6 +114,18 @@ impl Sphere {
         let u = 0.5 + normal.x.atan2(normal.z) / (2.0 * PI);
         let v = 0.5 - normal.y.clamp(-1.0, 1.0).asin() / PI;
         (u, v)
+    }
+
+    /// The texture coordinates at the point of outward unit `normal` and their tangents:
+    /// u turns once around the equator, v runs pole to pole along a meridian.
+    #[inline]
+    pub fn uv_frame(&self, normal: Vec3A) -> UvFrame {
+        UvFrame {
+            uv: Self::uv(normal),
+            dpdu: around_y_axis(normal) * self.radius,
+            // v grows southwards, against latitude.
+            dpdv: along_meridian(normal) * (-PI * self.radius),
+        }
     }
 
     /// The box around the sphere.

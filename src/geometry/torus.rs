@@ -10,6 +10,7 @@
 use super::aabb::Aabb;
 use super::polynomial::{MAX_ROOTS, roots_in};
 use super::ray::Ray;
+use super::uv_frame::{UvFrame, around_y_axis};
 use crate::numerics::gamma;
 use glam::{DVec3, Vec3, Vec3A};
 use std::f32::consts::PI;
@@ -111,6 +112,22 @@ impl Torus {
         let outward = n.dot(ring / self.major_radius);
         let v = 0.5 - n.y.atan2(outward) / (2.0 * PI);
         (u, v)
+    }
+
+    /// The texture coordinates at `p` and their tangents: u around the axis, v around the
+    /// tube (over the top first, so against the tube angle measured from the outer rim up).
+    pub fn uv_frame(&self, p: Vec3A) -> UvFrame {
+        let rel = p - Vec3A::from(self.center);
+        let (ring, n) = self.ring_and_normal(rel);
+        let outward = n.dot(ring / self.major_radius);
+        let radial = ring / self.major_radius;
+        // ∂p/∂θ for θ = atan2(n.y, outward) is r·(−n.y·radial + outward·y); v = ½ − θ/2π.
+        let dpdtheta = (Vec3A::Y * outward - radial * n.y) * self.minor_radius;
+        UvFrame {
+            uv: self.uv(p),
+            dpdu: around_y_axis(rel),
+            dpdv: dpdtheta * -std::f32::consts::TAU,
+        }
     }
 
     /// The box around the torus.

@@ -101,6 +101,13 @@ impl Transform {
         (self.normal_to_scene * n).normalize()
     }
 
+    /// An object-space direction (a tangent, not a normal) in the scene's, its length
+    /// carried with it.
+    #[inline]
+    pub fn vector_to_scene(&self, v: Vec3A) -> Vec3A {
+        self.to_scene.matrix3 * v
+    }
+
     /// The box in the scene's space around an object-space box (its corners mapped, and
     /// widened by the rounding of the map).
     pub fn bounds_to_scene(&self, b: &Aabb) -> Aabb {

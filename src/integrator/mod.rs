@@ -7,6 +7,7 @@ mod coincident;
 mod local_light;
 mod path;
 mod reflection;
+mod relief;
 mod signature;
 mod transmission;
 
@@ -297,7 +298,10 @@ impl<'a> Integrator<'a> {
             .surface(hit.primitive, hit.shape.detail.part());
         let object = self.accel().object(hit);
         let material = self.appearance.material(object);
-        let surface = self.accel().surface(q, hit);
+        let mut surface = self.accel().surface(q, hit);
+        if let Some(relief) = &material.relief {
+            surface.shading = self.relief_normal(relief, q, hit, object, &surface);
+        }
         let entering = q.ray.dir.dot(surface.normal) < 0.0;
         // Shade the side the ray arrives on.
         let (n, ns) = if entering {

@@ -469,6 +469,7 @@ impl Scene {
         for object in &mut scene.objects {
             object.shape = object.shape.transformed(scale, Vec3::ZERO);
             object.material.texture = object.material.texture.scaled(scale);
+            object.material.relief = object.material.relief.as_ref().map(|r| r.scaled(scale));
             // Absorption is per unit length: a larger object absorbs as much over its length.
             object.material.absorption /= scale;
             // `placement` stays the file's: this scene is a test's variant, never saved.

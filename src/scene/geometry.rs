@@ -4,7 +4,7 @@
 
 use super::description::{Scene, ShapeDesc};
 use crate::accel::{AccelOptions, Accelerator, Instance, Model, Primitive, Surface};
-use crate::geometry::{Disc, Mesh, Shape, Triangle, picture_axes};
+use crate::geometry::{Disc, Mesh, Shape, Triangle, UvFrame, picture_axes};
 use crate::limits;
 use glam::{Vec3, Vec3A};
 use std::collections::HashMap;
@@ -72,6 +72,12 @@ impl PlanarUv {
     pub fn uv(&self, p: Vec3A) -> (f32, f32) {
         let d = p - self.origin;
         (d.dot(self.u_axis), 1.0 - d.dot(self.v_axis))
+    }
+
+    /// (u, v) of `p` and their tangents (constant over the plane).
+    #[inline]
+    pub fn uv_frame(&self, p: Vec3A) -> UvFrame {
+        UvFrame::planar(self.uv(p), self.u_axis, self.v_axis)
     }
 }
 

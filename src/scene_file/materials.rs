@@ -4,7 +4,7 @@
 use super::error::SceneError;
 use super::validator::{Item, V3, Validator};
 use crate::appearance::Material;
-use crate::appearance::Texture;
+use crate::appearance::{Relief, Texture};
 use crate::messages::{did_you_mean, quoted};
 use glam::Vec3;
 use serde::Deserialize;
@@ -28,6 +28,10 @@ pub(super) struct MaterialDef {
     pub(super) roughness: Option<f32>,
     pub(super) absorption: Option<V3>,
     pub(super) conductor: Option<V3>,
+    pub(super) bump: Option<String>,
+    pub(super) bump_depth: Option<f32>,
+    pub(super) normal_map: Option<String>,
+    pub(super) normal_strength: Option<f32>,
 }
 
 impl Validator<'_> {
@@ -44,6 +48,12 @@ impl Validator<'_> {
         };
         let m = m.get_ref();
         let d = Material::default();
+        let named = |field: &str, t: &String| {
+            textures.get(t).cloned().ok_or_else(|| {
+                let hint = did_you_mean(t, textures.keys().map(String::as_str));
+                self.field_error(&at, field, format!("no texture named {}{hint}", quoted(t)))
+            })
+        };
         let texture = match (&m.texture, m.color) {
             (Some(_), Some(_)) => {
                 return Err(self.field_error(
@@ -52,14 +62,7 @@ impl Validator<'_> {
                     "give either `color` or `texture`, not both",
                 ));
             }
-            (Some(t), None) => textures.get(t).cloned().ok_or_else(|| {
-                let hint = did_you_mean(t, textures.keys().map(String::as_str));
-                self.field_error(
-                    &at,
-                    "texture",
-                    format!("no texture named {}{hint}", quoted(t)),
-                )
-            })?,
+            (Some(t), None) => named("texture", t)?,
             (None, Some(c)) => Texture::Solid(c.into()),
             (None, None) => d.texture.clone(),
         };
@@ -77,10 +80,61 @@ impl Validator<'_> {
             roughness: m.roughness.unwrap_or(d.roughness),
             absorption: m.absorption.map_or(d.absorption, Vec3::from),
             conductor: m.conductor.map(Vec3::from),
+            relief: self.relief(&at, m, named)?,
         };
         material
             .check()
             .map_err(|p| self.field_error(&at, p.field, p.message))?;
         Ok(material)
+    }
+
+    /// A material's `bump` and `bump_depth`, or its `normal_map` and `normal_strength`;
+    /// `named` finds a texture by name for the field that names it.
+    fn relief(
+        &self,
+        at: &Item,
+        m: &MaterialDef,
+        named: impl Fn(&str, &String) -> Result<Texture, SceneError>,
+    ) -> Result<Option<Relief>, SceneError> {
+        let needs = |field: &str, what: &str| {
+            self.field_error(at, field, format!("`{field}` needs {what}"))
+        };
+        match (&m.bump, &m.normal_map) {
+            (Some(_), Some(_)) => Err(self.field_error(
+                at,
+                "normal_map",
+                "give either `bump` or `normal_map`, not both",
+            )),
+            (Some(name), None) => {
+                if m.normal_strength.is_some() {
+                    return Err(needs("normal_strength", "a `normal_map`"));
+                }
+                let depth = m.bump_depth.ok_or_else(|| {
+                    needs(
+                        "bump",
+                        "a `bump_depth`: how far the texture's white stands above its black, \
+                         in scene units",
+                    )
+                })?;
+                Ok(Some(Relief::Bump {
+                    height: named("bump", name)?,
+                    depth,
+                }))
+            }
+            (None, Some(name)) => {
+                if m.bump_depth.is_some() {
+                    return Err(needs("bump_depth", "a `bump` texture"));
+                }
+                Ok(Some(Relief::NormalMap {
+                    map: named("normal_map", name)?,
+                    strength: m.normal_strength.unwrap_or(1.0),
+                }))
+            }
+            (None, None) => match (m.bump_depth, m.normal_strength) {
+                (Some(_), _) => Err(needs("bump_depth", "a `bump` texture")),
+                (_, Some(_)) => Err(needs("normal_strength", "a `normal_map`")),
+                (None, None) => Ok(None),
+            },
+        }
     }
 }

@@ -9,8 +9,8 @@ use super::placement::Placement;
 use super::read_cache::ReadMesh;
 use super::textures::{BudgetError, Images};
 use super::validator::{Item, P3, V3, Validator};
-use crate::appearance::{Material, Texture, UvTransform};
-use crate::geometry::{Mesh, Transform};
+use crate::appearance::{Material, Relief, Texture, UvTransform};
+use crate::geometry::{Aabb, Mesh, Transform};
 use crate::limits;
 use crate::messages::quoted;
 use glam::{DVec3, Vec3};
@@ -68,6 +68,29 @@ pub(super) struct MeshObject {
     pub(super) part: Option<String>,
     pub(super) mesh: Arc<Mesh>,
     pub(super) material: Material,
+}
+
+/// How far an MTL height map's white stands above its black per unit of `-bm`, as a
+/// share of the mesh file's size (the diagonal of the box around its positions).
+pub const MTL_BUMP_SHARE: f32 = 0.005;
+
+/// The diagonal of the box around every position of a mesh file's parts.
+fn file_size(file: &LoadedFile) -> f32 {
+    let mut bounds = Aabb::EMPTY;
+    for part in &file.parts {
+        bounds = bounds.union(part.mesh.bounds());
+    }
+    if bounds.is_empty() {
+        0.0
+    } else {
+        (bounds.max - bounds.min).length()
+    }
+}
+
+/// Whether a picture's mean colour is a tangent-space normal map's: the red and green of
+/// normals tilted every way about a blue of mostly straight out.
+fn looks_like_normal_map(mean: Vec3) -> bool {
+    (mean.x - 0.5).abs() < 0.15 && (mean.y - 0.5).abs() < 0.15 && mean.z > 0.7
 }
 
 /// A problem at a line of mesh or material file `path`, read for table `at`.
@@ -261,17 +284,30 @@ impl Validator<'_> {
                 // Every image of the library is counted from its header before any is
                 // decoded, so the budget refuses before memory is spent.
                 for m in &materials {
-                    if let Some(name) = &m.map_kd
-                        && let Err(BudgetError::Exceeded(message)) =
-                            images.count(self, &beside(&mtl_rel, name))
-                    {
-                        let line = m.lines.get("map_Kd").copied().unwrap_or(m.line);
-                        return Err(asset_error(&mtl_path, at, LineError { line, message }));
+                    let maps = [
+                        ("map_Kd", m.map_kd.as_ref()),
+                        ("map_Bump", m.bump.as_ref().map(|b| &b.0)),
+                        ("norm", m.norm.as_ref().map(|n| &n.0)),
+                    ];
+                    for (key, name) in maps {
+                        if let Some(name) = name
+                            && let Err(BudgetError::Exceeded(message)) =
+                                images.count(self, &beside(&mtl_rel, name))
+                        {
+                            let line = m
+                                .lines
+                                .get(key)
+                                .or(m.lines.get("bump"))
+                                .copied()
+                                .unwrap_or(m.line);
+                            return Err(asset_error(&mtl_path, at, LineError { line, message }));
+                        }
                     }
                 }
+                let size = file_size(file);
                 for m in materials {
                     let material = self
-                        .mtl_material(&m, &mtl_rel, images)
+                        .mtl_material(&m, &mtl_rel, size, images)
                         .map_err(|e| asset_error(&mtl_path, at, e))?;
                     // The first library to define a name wins, as in other readers.
                     library.entry(m.name.clone()).or_insert(material);
@@ -311,11 +347,14 @@ impl Validator<'_> {
         }
     }
 
-    /// Prism's material for an MTL one, each value held to the scene file's limits.
+    /// Prism's material for an MTL one, each value held to the scene file's limits; `size`
+    /// is the diagonal of the box around the mesh file's positions (MTL's bump heights
+    /// have no unit: prism measures them against it).
     fn mtl_material(
         &self,
         m: &MtlMaterial,
         mtl_rel: &str,
+        size: f32,
         images: &mut Images,
     ) -> Result<Material, LineError> {
         let at = |key: &'static str| m.lines.get(key).copied().unwrap_or(m.line);
@@ -387,6 +426,7 @@ impl Validator<'_> {
             )?),
             _ => None,
         };
+        let relief = self.mtl_relief(m, mtl_rel, size, images)?;
         let specular = ks
             .map(mean)
             .unwrap_or(if illum >= 2 { d.specular } else { 0.0 });
@@ -403,7 +443,63 @@ impl Validator<'_> {
             transparency,
             eta,
             emission: ke.unwrap_or(Vec3::ZERO),
+            relief,
             ..d
         })
+    }
+
+    /// An MTL material's relief. `norm` is a normal map; `map_Bump` (or `bump`) is one too
+    /// when its picture reads as one (bluish, as Blender writes its normal maps there), and
+    /// otherwise a height map raising white `-bm` × `MTL_BUMP_SHARE` of `size` above black.
+    /// `-bm` is a normal map's strength.
+    fn mtl_relief(
+        &self,
+        m: &MtlMaterial,
+        mtl_rel: &str,
+        size: f32,
+        images: &mut Images,
+    ) -> Result<Option<Relief>, LineError> {
+        let (key, (name, multiplier)) = match (&m.norm, &m.bump) {
+            (Some(norm), _) => ("norm", norm),
+            (None, Some(bump)) => (
+                if m.lines.contains_key("bump") {
+                    "bump"
+                } else {
+                    "map_Bump"
+                },
+                bump,
+            ),
+            (None, None) => return Ok(None),
+        };
+        let line = m.lines.get(key).copied().unwrap_or(m.line);
+        let fail = |message: String| LineError {
+            line,
+            message: format!("material {}: {message}", quoted(&m.name)),
+        };
+        let image = images.load(self, &beside(mtl_rel, name)).map_err(&fail)?;
+        let normal_map = key == "norm" || looks_like_normal_map(image.mean());
+        let map = Texture::Image {
+            image,
+            uv: UvTransform::IDENTITY,
+        };
+        let (relief, field, value, range) = if normal_map {
+            let relief = Relief::NormalMap {
+                map,
+                strength: *multiplier,
+            };
+            (relief, "strength", *multiplier, limits::NORMAL_STRENGTH)
+        } else {
+            let depth = multiplier * MTL_BUMP_SHARE * size;
+            let relief = Relief::Bump { height: map, depth };
+            (relief, "depth", depth, limits::BUMP_DEPTH)
+        };
+        if !range.contains(&value) {
+            return Err(fail(format!(
+                "`{key}`'s `-bm` gives a {field} of {value}, outside [{}, {}]",
+                range.start(),
+                range.end()
+            )));
+        }
+        Ok(Some(relief))
     }
 }

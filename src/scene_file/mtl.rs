@@ -1,5 +1,5 @@
 //! Wavefront MTL material libraries: `newmtl` and the colour, highlight, transparency,
-//! index, `illum` and `map_Kd` statements, as written, each problem named by its line (the
+//! index, `illum`, `map_Kd` and relief (`map_Bump`, `bump`, `norm`) statements, as written, each problem named by its line (the
 //! mapping to prism's materials is meshes.rs's).
 
 use super::obj::{LineError, numbers, rest_of, statements, without_byte_order_mark};
@@ -31,6 +31,11 @@ pub struct MtlMaterial {
     pub illum: Option<u32>,
     /// `map_Kd`: the diffuse colour's image, relative to the MTL file.
     pub map_kd: Option<String>,
+    /// `map_Bump` or `bump`: a height map (or, as Blender writes them, a normal map), and
+    /// its `-bm` multiplier (1 without one).
+    pub bump: Option<(String, f32)>,
+    /// `norm`: a tangent-space normal map, and its `-bm` multiplier.
+    pub norm: Option<(String, f32)>,
     /// The line of each statement, by keyword, for messages about its value.
     pub lines: HashMap<&'static str, usize>,
 }
@@ -53,8 +58,9 @@ pub fn parse_mtl(text: &str) -> Result<Vec<MtlMaterial>, LineError> {
             });
             continue;
         }
-        const KNOWN: [&str; 10] = [
-            "Kd", "Ka", "Ks", "Ke", "Ns", "d", "Tr", "Ni", "illum", "map_Kd",
+        const KNOWN: [&str; 13] = [
+            "Kd", "Ka", "Ks", "Ke", "Ns", "d", "Tr", "Ni", "illum", "map_Kd", "map_Bump", "bump",
+            "norm",
         ];
         let Some(&known) = KNOWN.iter().find(|&&k| k == keyword) else {
             continue; // other maps, Tf, sharpness: nothing prism draws
@@ -124,6 +130,29 @@ pub fn parse_mtl(text: &str) -> Result<Vec<MtlMaterial>, LineError> {
                 }
                 m.map_kd = Some(name.to_string());
             }
+            "map_Bump" | "bump" | "norm" => {
+                let words: Vec<&str> = words.collect();
+                let Some((name, options)) = words.split_last() else {
+                    return Err(fail(format!("`{keyword}` needs an image file name")));
+                };
+                let multiplier = match options.iter().position(|&w| w == "-bm") {
+                    None => 1.0,
+                    Some(i) => match options.get(i + 1).map(|w| w.parse::<f32>()) {
+                        Some(Ok(bm)) if bm.is_finite() => bm,
+                        _ => {
+                            return Err(fail(format!(
+                                "`{keyword}`'s `-bm` needs a number before the file name"
+                            )));
+                        }
+                    },
+                };
+                let map = Some((name.to_string(), multiplier));
+                if known == "norm" {
+                    m.norm = map;
+                } else {
+                    m.bump = map;
+                }
+            }
             _ => unreachable!(),
         }
     }
@@ -150,9 +179,10 @@ mod tests {
     #[test]
     fn mtl_statements_are_read() {
         let mtl = "newmtl glass\nKd 0.1 0.2 0.3\nKs 1\nNs 200\nd 0.25\nNi 1.5\nillum 7\n\
-                   newmtl tex\nmap_Kd -s 2 2 1 grain.jpg\nmap_Bump ignored.png\n";
+                   newmtl tex\nmap_Kd -s 2 2 1 grain.jpg\nmap_Bump -bm 0.5 relief.png\n\
+                   newmtl n\nnorm -clamp on tangent.png\n";
         let m = parse_mtl(mtl).unwrap();
-        assert_eq!(m.len(), 2);
+        assert_eq!(m.len(), 3);
         assert_eq!(m[0].kd, Some([0.1, 0.2, 0.3]));
         assert_eq!(m[0].ks, Some([1.0; 3]));
         assert_eq!(m[0].transparency, Some(0.75));
@@ -160,10 +190,14 @@ mod tests {
         assert_eq!(m[0].lines["Ni"], 6);
         // Options come before the file name: the last word is the name.
         assert_eq!(m[1].map_kd.as_deref(), Some("grain.jpg"));
+        assert_eq!(m[1].bump, Some(("relief.png".to_string(), 0.5)));
+        assert_eq!(m[2].norm, Some(("tangent.png".to_string(), 1.0)));
         for (text, line) in [
             ("Kd 1 1 1\n", 1),
             ("newmtl a\nKd 1 1\n", 2),
             ("newmtl a\nillum 2.5\n", 2),
+            ("newmtl a\nbump\n", 2),
+            ("newmtl a\n\nmap_Bump -bm x h.png\n", 3),
         ] {
             assert_eq!(parse_mtl(text).unwrap_err().line, line, "{text:?}");
         }

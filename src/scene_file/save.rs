@@ -4,7 +4,9 @@
 
 use super::camera_table::camera_table;
 use super::load::LoadedScene;
-use crate::appearance::{Background, Falloff, Fog, FogKind, Light, LightKind, Material, Texture};
+use crate::appearance::{
+    Background, Falloff, Fog, FogKind, Light, LightKind, Material, Relief, Texture,
+};
 use crate::camera::Camera;
 use crate::messages::shortest;
 use crate::scene::{Scene, ShapeDesc};
@@ -488,6 +490,20 @@ fn write_material(
             }
         }
     }
+    // The panel changes a relief's depth or strength, never its picture or kind.
+    match (&was.relief, &now.relief) {
+        (Some(Relief::Bump { depth: a, .. }), Some(Relief::Bump { depth: b, .. })) if a != b => {
+            set(t, "bump_depth", number(*b));
+        }
+        (
+            Some(Relief::NormalMap { strength: a, .. }),
+            Some(Relief::NormalMap { strength: b, .. }),
+        ) if a != b => set(t, "normal_strength", number(*b)),
+        (Some(Relief::Bump { .. }), Some(Relief::Bump { .. }))
+        | (Some(Relief::NormalMap { .. }), Some(Relief::NormalMap { .. })) => {}
+        (a, b) if a != b => skipped.push(format!("materials.{name}: a relief cannot be written")),
+        _ => {}
+    }
 }
 
 /// Entry `index` of the array of tables `key` (`[[key]]`, or `key = [{ … }]`).
@@ -675,6 +691,62 @@ material = \"mirror\"
         std::fs::write(&path, &saved.text).unwrap();
         let back = load_scene_file(&path).result.unwrap().scene;
         assert_eq!(back, Scene { camera, ..edited }, "{}", saved.text);
+    }
+
+    /// A bump map's depth and a normal map's strength edited in the panel are written
+    /// back (the pictures' names kept) and read back.
+    #[test]
+    fn relief_depth_and_strength_are_saved() {
+        let text = "[camera]\neye = [0, 2, 8]\nlook_at = [0, 0, 0]\nfov = 40\n\n\
+                    [textures.dents]\ntype = \"noise\"\n\n\
+                    [materials.bumpy]\nbump = \"dents\" # hammered\nbump_depth = 0.1\n\n\
+                    [[spheres]]\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"bumpy\"\n";
+        let (_dir, path, loaded) = load(text);
+        let mut edited = loaded.scene.clone();
+        let mut m = edited.objects[0].material.clone();
+        let Some(Relief::Bump { depth, .. }) = &mut m.relief else {
+            panic!("{:?}", m.relief);
+        };
+        *depth = 0.025;
+        edited.set_material(0, m).unwrap();
+        let saved = saved_text(&loaded, &edited, &loaded.scene.camera).unwrap();
+        for written in ["bump_depth = 0.025", "bump = \"dents\" # hammered"] {
+            assert!(saved.text.contains(written), "{written}:\n{}", saved.text);
+        }
+        assert!(saved.skipped.is_empty(), "{:?}", saved.skipped);
+        std::fs::write(&path, &saved.text).unwrap();
+        let back = load_scene_file(&path).result.unwrap().scene;
+        assert_eq!(back, edited, "{}", saved.text);
+
+        let pictures = tempfile::tempdir().unwrap();
+        let picture = pictures.path().join("n.png");
+        image::RgbImage::from_pixel(2, 2, image::Rgb([128, 128, 255]))
+            .save(&picture)
+            .unwrap();
+        let text = format!(
+            "[camera]\neye = [0, 2, 8]\nlook_at = [0, 0, 0]\nfov = 40\n\n\
+             [textures.n]\ntype = \"image\"\npath = {:?}\n\n\
+             [materials.mapped]\nnormal_map = \"n\"\n\n\
+             [[spheres]]\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"mapped\"\n",
+            picture.to_str().unwrap()
+        );
+        let (_dir, path, loaded) = load(&text);
+        let mut edited = loaded.scene.clone();
+        let mut m = edited.objects[0].material.clone();
+        let Some(Relief::NormalMap { strength, .. }) = &mut m.relief else {
+            panic!("{:?}", m.relief);
+        };
+        *strength = 2.5;
+        edited.set_material(0, m).unwrap();
+        let saved = saved_text(&loaded, &edited, &loaded.scene.camera).unwrap();
+        assert!(
+            saved.text.contains("normal_strength = 2.5"),
+            "{}",
+            saved.text
+        );
+        std::fs::write(&path, &saved.text).unwrap();
+        let back = load_scene_file(&path).result.unwrap().scene;
+        assert_eq!(back, edited, "{}", saved.text);
     }
 
     /// A spotlight's cone and disc edited in the panel are written back and read back.

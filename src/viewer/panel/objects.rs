@@ -1,12 +1,46 @@
 //! The panel's objects: the list to pick from, and the selection's material (colour or
-//! texture, Phong factors, mirror, glass, emission) and place (translate, rotate, scale).
+//! texture, Phong factors, mirror, glass, emission, relief) and place (translate, rotate, scale).
 
 use super::widgets::{color_row, position_row, scale_text, texture_kind, xyz};
 use super::{Changes, PanelState, SLIDERS};
 use egui::{DragValue, RichText, Slider, SliderClamping};
 use glam::DVec3;
-use prism::appearance::Texture;
+use prism::appearance::{Relief, Texture};
 use prism::limits::{MAX_PHONG_FACTOR, MAX_RADIANCE, MAX_SHININESS};
+
+/// The depth of a material's bumps or the strength of its normal map, when it has one;
+/// the field changed, if one was.
+fn relief_row(ui: &mut egui::Ui, relief: &mut Option<Relief>) -> Option<&'static str> {
+    let (value, range, name, field, hint) = match relief {
+        Some(Relief::Bump { depth, .. }) => (
+            depth,
+            prism::limits::BUMP_DEPTH,
+            "bump depth ",
+            "bump_depth",
+            "How far the bump map's white stands above its black, in scene units (0: flat)",
+        ),
+        Some(Relief::NormalMap { strength, .. }) => (
+            strength,
+            prism::limits::NORMAL_STRENGTH,
+            "normal strength ",
+            "normal_strength",
+            "What the normal map's tilt is multiplied by (0: flat, 1: the picture's own)",
+        ),
+        None => return None,
+    };
+    // A hundredth of the value per pixel dragged, whatever the scene's scale.
+    let speed = (*value as f64 * 0.01).max(1e-4);
+    let r = ui
+        .add(
+            DragValue::new(value)
+                .range(range)
+                .speed(speed)
+                .max_decimals(5)
+                .prefix(name),
+        )
+        .on_hover_text(hint);
+    r.changed().then_some(field)
+}
 
 impl PanelState {
     /// The list of objects, and the selected one's material.
@@ -166,6 +200,9 @@ impl PanelState {
         }
         if color_row(ui, "emission", &mut m.emission, 0.0..=MAX_RADIANCE, false) {
             field = "emission";
+        }
+        if let Some(f) = relief_row(ui, &mut m.relief) {
+            field = f;
         }
         if m != before {
             self.edit(changes, format!("object {i} {field}"), |s| {
