@@ -147,6 +147,14 @@ pub const SAMPLES: RangeInclusive<u32> = 1..=65536;
 /// A glossy material's roughness: 0 is a mirror, 1 nearly diffuse.
 pub const ROUGHNESS: RangeInclusive<f32> = 0.0..=1.0;
 
+/// The most solids one CSG combination holds, nested ones included: a ray tests them all,
+/// and a hit on one tests whether the point is inside the others. (A union at the top of
+/// an entry is traced as its members, each counted apart.)
+pub const MAX_CSG_MEMBERS: usize = 256;
+
+/// How deep CSG combinations may nest.
+pub const MAX_CSG_DEPTH: usize = 32;
+
 /// How far a bump map's white stands above its black, in scene units (0: flat).
 pub const BUMP_DEPTH: RangeInclusive<f32> = 0.0..=(MAX_COORDINATE as f32);
 

@@ -146,7 +146,7 @@ fn the_bunny_loads_once_for_many_instances() {
         .iter()
         .map(|p| match &p.surface {
             Surface::Instance(i) => i.model().clone(),
-            Surface::Shape(s) => panic!("{s:?}"),
+            other => panic!("{other:?}"),
         })
         .collect();
     assert_eq!(models.len(), 3);

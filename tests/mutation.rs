@@ -11,7 +11,7 @@ use proptest::prelude::*;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, OnceLock};
 
-const SEEDS: [&str; 12] = [
+const SEEDS: [&str; 13] = [
     include_str!("../fuzz/corpus/seed.toml"),
     include_str!("../fuzz/corpus/shapes.toml"),
     include_str!("../fuzz/corpus/sphere.toml"),
@@ -24,6 +24,7 @@ const SEEDS: [&str; 12] = [
     include_str!("../fuzz/corpus/left-handed.toml"),
     include_str!("../fuzz/corpus/touching.toml"),
     include_str!("../fuzz/corpus/smooth-mesh-and-brackets.toml"),
+    include_str!("../fuzz/corpus/csg.toml"),
 ];
 
 /// Values that have broken renderers: overflow when squared or multiplied, underflow,

@@ -226,6 +226,16 @@ impl Instance {
         self.model.crossings(&self.local(q), t_max)
     }
 
+    /// Whether scene point `p` lies inside the solid the model bounds (a shape's; a mesh
+    /// has none that this knows of).
+    #[inline]
+    pub fn contains(&self, p: Vec3A) -> bool {
+        match &*self.model {
+            Model::Shape(shape) => shape.contains(self.transform.point_to_object(p)),
+            Model::Mesh { .. } => false,
+        }
+    }
+
     /// The surface point of `hit` in the scene's space, its error bound carried across.
     #[inline]
     pub fn surface(&self, q: &RayQuery, hit: &ShapeHit) -> SurfacePoint {

@@ -17,6 +17,7 @@
 
 mod bvh;
 mod bvh_build;
+mod csg;
 mod first_hit;
 mod instance;
 mod isolated;
@@ -24,6 +25,7 @@ mod light_buffer;
 mod primitive;
 
 pub use bvh::{Bvh, Coincident};
+pub use csg::{Csg, CsgLeaf, CsgNode, CsgOperation};
 pub use first_hit::{Candidate, FirstHitTiles, TileCensus};
 pub use instance::{Instance, Model};
 pub use light_buffer::{LightBuffer, LightBufferCensus};
@@ -511,7 +513,7 @@ fn largest_coincident(primitives: &[Primitive], top: Coincident) -> (u32, u32) {
                 seen.insert(Arc::as_ptr(model))
                     .then(|| (model.coincident().count, p.object))
             }
-            Surface::Shape(_) => None,
+            Surface::Shape(_) | Surface::Csg(_) => None,
         })
         .fold(
             (top.count, top_object),

@@ -1,6 +1,7 @@
 //! What the acceleration layer indexes: one intersectable piece of an object, either a
 //! shape in the scene's space or an instance of a model placed by a transform.
 
+use super::csg::Csg;
 use super::instance::Instance;
 use crate::geometry::{Aabb, RayQuery, Shape, ShapeHit, SurfacePoint, UvFrame};
 use glam::Vec3A;
@@ -25,6 +26,8 @@ pub enum Surface {
     /// transform: the second level of a two-level hierarchy. Models are shared, so many
     /// instances of one mesh cost one mesh.
     Instance(Arc<Instance>),
+    /// Closed solids combined (csg.rs), in the scene's space.
+    Csg(Arc<Csg>),
 }
 
 impl Surface {
@@ -34,6 +37,7 @@ impl Surface {
         match self {
             Surface::Shape(shape) => shape.intersect_after(q, t_min, t_max),
             Surface::Instance(instance) => instance.intersect_after(q, t_min, t_max),
+            Surface::Csg(csg) => csg.intersect_after(q, t_min, t_max),
         }
     }
 
@@ -49,6 +53,7 @@ impl Surface {
         match self {
             Surface::Shape(shape) => shape.intersect(q, t_max).is_some(),
             Surface::Instance(instance) => instance.occludes(q, t_max),
+            Surface::Csg(csg) => csg.intersect_after(q, 0.0, t_max).is_some(),
         }
     }
 
@@ -58,6 +63,7 @@ impl Surface {
         match self {
             Surface::Shape(shape) => shape.crossings(q, t_max),
             Surface::Instance(instance) => instance.crossings(q, t_max),
+            Surface::Csg(csg) => csg.crossings(q, t_max),
         }
     }
 
@@ -67,6 +73,7 @@ impl Surface {
         match self {
             Surface::Shape(shape) => shape.surface(q, hit),
             Surface::Instance(instance) => instance.surface(q, hit),
+            Surface::Csg(csg) => csg.surface(q, hit),
         }
     }
 
@@ -75,7 +82,7 @@ impl Surface {
     #[inline]
     pub fn shadow_point(&self, hit: &ShapeHit) -> Option<(Vec3A, Vec3A)> {
         match self {
-            Surface::Shape(_) => None,
+            Surface::Shape(_) | Surface::Csg(_) => None,
             Surface::Instance(instance) => instance.shadow_point(hit),
         }
     }
@@ -86,6 +93,7 @@ impl Surface {
         match self {
             Surface::Shape(shape) => shape.uv(surface, hit),
             Surface::Instance(instance) => instance.uv(q, hit),
+            Surface::Csg(csg) => csg.uv(q, surface, hit),
         }
     }
 
@@ -95,6 +103,7 @@ impl Surface {
         match self {
             Surface::Shape(shape) => shape.uv_frame(surface, hit),
             Surface::Instance(instance) => instance.uv_frame(q, hit),
+            Surface::Csg(csg) => csg.uv_frame(q, surface, hit),
         }
     }
 
@@ -103,6 +112,7 @@ impl Surface {
         match self {
             Surface::Shape(shape) => shape.bounds(),
             Surface::Instance(instance) => instance.bounds(),
+            Surface::Csg(csg) => csg.bounds(),
         }
     }
 
@@ -110,7 +120,7 @@ impl Surface {
     pub fn shape(&self) -> Option<&Shape> {
         match self {
             Surface::Shape(shape) => Some(shape),
-            Surface::Instance(_) => None,
+            Surface::Instance(_) | Surface::Csg(_) => None,
         }
     }
 }

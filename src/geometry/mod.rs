@@ -26,7 +26,7 @@ pub use cylinder::{Cylinder, CylinderPart};
 pub use disc::{Disc, picture_axes};
 pub use mesh::{Mesh, MeshError};
 pub use ray::{Ray, RayQuery};
-pub use shape::{HitDetail, Shape, ShapeHit, SurfacePoint};
+pub use shape::{HitDetail, Shape, ShapeHit, ShapePart, SurfacePoint};
 pub use sphere::Sphere;
 pub use torus::Torus;
 pub use transform::Transform;

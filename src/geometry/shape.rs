@@ -85,6 +85,54 @@ pub enum HitDetail {
         /// The weights of its three corners.
         b: [f32; 3],
     },
+    /// Member `leaf` of a CSG solid (counted in its tree's order), on `part` of it.
+    Csg {
+        /// Which member.
+        leaf: u16,
+        /// Where on it.
+        part: ShapePart,
+    },
+}
+
+/// Where on a closed shape a hit is, without the shape: what a CSG hit keeps of its
+/// member's own detail.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ShapePart {
+    /// A shape of one surface (a sphere, a torus, a plane).
+    Whole,
+    /// A cylinder's, cone's or capsule's side or end.
+    Part(CylinderPart),
+    /// A box's face.
+    Face(CuboidFace),
+}
+
+impl ShapePart {
+    /// The part a shape's own hit detail names.
+    #[inline]
+    pub fn of(detail: HitDetail) -> ShapePart {
+        match detail {
+            HitDetail::Cylinder { part }
+            | HitDetail::Cone { part }
+            | HitDetail::Capsule { part } => ShapePart::Part(part),
+            HitDetail::Cuboid { face } => ShapePart::Face(face),
+            _ => ShapePart::Whole,
+        }
+    }
+
+    /// The hit detail of this part of `shape`.
+    #[inline]
+    pub fn detail(self, shape: &Shape) -> HitDetail {
+        match (shape, self) {
+            (Shape::Cylinder(_), ShapePart::Part(part)) => HitDetail::Cylinder { part },
+            (Shape::Cone(_), ShapePart::Part(part)) => HitDetail::Cone { part },
+            (Shape::Capsule(_), ShapePart::Part(part)) => HitDetail::Capsule { part },
+            (Shape::Cuboid(_), ShapePart::Face(face)) => HitDetail::Cuboid { face },
+            (Shape::Sphere(_), _) => HitDetail::Sphere,
+            (Shape::Disc(_), _) => HitDetail::Disc,
+            (Shape::Torus(_), _) => HitDetail::Torus,
+            (shape, part) => unreachable!("{part:?} is no part of {shape:?}"),
+        }
+    }
 }
 
 impl HitDetail {
@@ -97,6 +145,15 @@ impl HitDetail {
             | HitDetail::Cone { part }
             | HitDetail::Capsule { part } => *part as u32,
             HitDetail::Cuboid { face } => face.axis as u32 * 2 + face.upper as u32,
+            // A CSG member's part among all its members' (at most six parts each).
+            HitDetail::Csg { leaf, part } => {
+                let own = match *part {
+                    ShapePart::Whole => 0,
+                    ShapePart::Part(p) => p as u32,
+                    ShapePart::Face(f) => f.axis as u32 * 2 + f.upper as u32,
+                };
+                *leaf as u32 * 6 + own
+            }
             _ => 0,
         }
     }
@@ -268,6 +325,41 @@ impl Shape {
             Shape::Cone(c) => c.bounds(),
             Shape::Torus(tor) => tor.bounds(),
             Shape::Capsule(c) => c.bounds(),
+        }
+    }
+
+    /// Whether `p` lies inside the solid it bounds (for CSG); false for a shape with no
+    /// inside (a triangle, a disc, an open tube or cone). A point on the surface may count
+    /// either way.
+    #[inline]
+    pub fn contains(&self, p: Vec3A) -> bool {
+        match self {
+            Shape::Sphere(s) => (p - s.center).length_squared() < s.radius * s.radius,
+            Shape::Cuboid(b) => p.cmpgt(b.min).all() && p.cmplt(b.max).all(),
+            Shape::Cylinder(c) => {
+                let rel = p - Vec3A::from(c.base);
+                c.caps
+                    && rel.y > 0.0
+                    && rel.y < c.height
+                    && rel.x * rel.x + rel.z * rel.z < c.radius * c.radius
+            }
+            Shape::Cone(c) => {
+                let rel = p - Vec3A::from(c.base);
+                let r = c.radius + (c.top_radius - c.radius) * (rel.y / c.height);
+                c.caps && rel.y > 0.0 && rel.y < c.height && rel.x * rel.x + rel.z * rel.z < r * r
+            }
+            Shape::Torus(tor) => {
+                let rel = p - Vec3A::from(tor.center);
+                let ring = (rel.x * rel.x + rel.z * rel.z).sqrt() - tor.major_radius;
+                ring * ring + rel.y * rel.y < tor.minor_radius * tor.minor_radius
+            }
+            Shape::Capsule(c) => {
+                let rel = p - Vec3A::from(c.base);
+                let y = rel.y.clamp(0.0, c.height);
+                let d = Vec3A::new(rel.x, rel.y - y, rel.z);
+                d.length_squared() < c.radius * c.radius
+            }
+            Shape::Triangle(_) | Shape::Disc(_) => false,
         }
     }
 

@@ -101,6 +101,12 @@ impl Transform {
         (self.normal_to_scene * n).normalize()
     }
 
+    /// A scene point in object space.
+    #[inline]
+    pub fn point_to_object(&self, p: Vec3A) -> Vec3A {
+        self.to_object.transform_point3a(p)
+    }
+
     /// An object-space direction (a tangent, not a normal) in the scene's, its length
     /// carried with it.
     #[inline]

@@ -1,6 +1,7 @@
 //! A validated scene: what is where, made of what. Every value here has passed the checks
 //! of the scene file loader, so preparing a `Scene` cannot fail.
 
+use crate::accel::CsgOperation;
 use crate::appearance::Material;
 use crate::appearance::{Background, Fog, Light};
 use crate::camera::Camera;
@@ -209,6 +210,15 @@ pub enum ShapeDesc {
         /// From the mesh's space to the scene's.
         transform: Transform,
     },
+    /// Closed solids combined (POV-Ray's CSG), each member placed in the scene's space: a
+    /// sphere, a capped cylinder or cone, a box, a torus, a capsule, a plane (the half of
+    /// space behind it), one of those transformed, or another combination.
+    Csg {
+        /// How the members combine.
+        operation: CsgOperation,
+        /// Two or more members.
+        members: Vec<ShapeDesc>,
+    },
     /// A shape in its own space under a transform its own parameters cannot express (a
     /// sphere scaled unevenly into an ellipsoid, a tilted cylinder).
     Transformed {
@@ -237,6 +247,7 @@ impl ShapeDesc {
             ShapeDesc::Mesh { transform, .. } | ShapeDesc::Transformed { transform, .. } => {
                 transform.to_scene().translation.into()
             }
+            ShapeDesc::Csg { members, .. } => members[0].origin(),
         }
     }
 
@@ -305,6 +316,25 @@ impl ShapeDesc {
             ShapeDesc::Mesh { mesh, transform } => transform.bounds_to_scene(&mesh.bounds()),
             ShapeDesc::Transformed { shape, transform } => {
                 transform.bounds_to_scene(&shape.bounds())
+            }
+            ShapeDesc::Csg { operation, members } => {
+                let mut boxes = members.iter().map(ShapeDesc::bounds);
+                match operation {
+                    CsgOperation::Union | CsgOperation::Merge => {
+                        boxes.fold(Aabb::EMPTY, |a, b| a.union(b))
+                    }
+                    CsgOperation::Difference => boxes.next().unwrap_or(Aabb::EMPTY),
+                    // Within every member's box; a plane's (its point's) bounds nothing.
+                    CsgOperation::Intersection => members
+                        .iter()
+                        .filter(|m| !matches!(m, ShapeDesc::Plane { .. }))
+                        .map(ShapeDesc::bounds)
+                        .reduce(|a, b| Aabb {
+                            min: a.min.max(b.min),
+                            max: a.max.min(b.max),
+                        })
+                        .unwrap_or_else(|| members[0].bounds()),
+                }
             }
             one => one.solid().expect("every other kind is one shape").bounds(),
         }
@@ -394,6 +424,13 @@ impl ShapeDesc {
                 shape: shape.clone(),
                 transform: moved(transform, scale, offset),
             },
+            ShapeDesc::Csg { operation, members } => ShapeDesc::Csg {
+                operation: *operation,
+                members: members
+                    .iter()
+                    .map(|m| m.transformed(scale, offset))
+                    .collect(),
+            },
         }
     }
 }
@@ -406,6 +443,10 @@ impl ShapeDesc {
             ShapeDesc::Cylinder { caps, .. } | ShapeDesc::Cone { caps, .. } => *caps,
             ShapeDesc::Mesh { .. } | ShapeDesc::Torus { .. } => false,
             ShapeDesc::Transformed { shape, .. } => shape.is_convex(),
+            // Only convex solids' common part is convex.
+            ShapeDesc::Csg { operation, members } => {
+                *operation == CsgOperation::Intersection && members.iter().all(|m| m.is_convex())
+            }
             ShapeDesc::Sphere { .. }
             | ShapeDesc::Capsule { .. }
             | ShapeDesc::Cuboid { .. }

@@ -3,7 +3,10 @@
 //! geometry changes, and never for an appearance edit.
 
 use super::description::{Scene, ShapeDesc};
-use crate::accel::{AccelOptions, Accelerator, Instance, Model, Primitive, Surface};
+use crate::accel::{
+    AccelOptions, Accelerator, Csg, CsgLeaf, CsgNode, CsgOperation, Instance, Model, Primitive,
+    Surface,
+};
 use crate::geometry::{Disc, Mesh, Shape, Triangle, UvFrame, picture_axes};
 use crate::limits;
 use glam::{Vec3, Vec3A};
@@ -104,6 +107,53 @@ fn plane_reach(scene: &Scene) -> f32 {
     // Only planes through the eye: seen edge on, any width will do.
     let extent = if extent > 0.0 { extent } else { 1.0 };
     (extent * limits::PLANE_REACH).min(f32::MAX.sqrt() * 0.5)
+}
+
+/// The surface of a CSG member (or a whole CSG solid) on its own: a closed shape, a plane
+/// (as a disc of radius `reach`), a transformed shape, or a combination.
+fn csg_member_surface(desc: &ShapeDesc, reach: f32) -> Surface {
+    match csg_leaf(desc, reach) {
+        Some(CsgLeaf::Shape(shape)) => Surface::Shape(shape),
+        Some(CsgLeaf::HalfSpace(disc)) => Surface::Shape(Shape::Disc(disc)),
+        Some(CsgLeaf::Instance(instance)) => Surface::Instance(Arc::new(*instance)),
+        None => {
+            let mut leaves = Vec::new();
+            let root = csg_node(desc, reach, &mut leaves);
+            Surface::Csg(Arc::new(Csg::new(root, leaves)))
+        }
+    }
+}
+
+/// A CSG member as a leaf; None for a combination.
+fn csg_leaf(desc: &ShapeDesc, reach: f32) -> Option<CsgLeaf> {
+    Some(match desc {
+        ShapeDesc::Plane { point, normal } => {
+            CsgLeaf::HalfSpace(Disc::new(*normal * point.dot(*normal), *normal, reach))
+        }
+        ShapeDesc::Transformed { shape, transform } => {
+            let model = shape.solid().expect("a transformed shape is one shape");
+            CsgLeaf::Instance(Box::new(Instance::new(
+                Arc::new(Model::Shape(model)),
+                *transform,
+            )))
+        }
+        ShapeDesc::Csg { .. } => return None,
+        solid => CsgLeaf::Shape(solid.solid().expect("a CSG member is a closed shape")),
+    })
+}
+
+/// The tree of CSG member `desc`, its leaves appended to `leaves` in the tree's order.
+fn csg_node(desc: &ShapeDesc, reach: f32, leaves: &mut Vec<CsgLeaf>) -> CsgNode {
+    match desc {
+        ShapeDesc::Csg { operation, members } => CsgNode::Combine {
+            operation: *operation,
+            members: members.iter().map(|m| csg_node(m, reach, leaves)).collect(),
+        },
+        leaf => {
+            leaves.push(csg_leaf(leaf, reach).expect("a leaf"));
+            CsgNode::Leaf(leaves.len() as u32 - 1)
+        }
+    }
 }
 
 /// The primitives of a scene's objects, the acceleration layer over them, and each object's
@@ -216,6 +266,17 @@ impl Geometry {
                         *transform,
                     ))));
                 }
+                // A union shows every member's whole surface: its members are primitives
+                // of one object, found through the hierarchy like any other.
+                ShapeDesc::Csg {
+                    operation: CsgOperation::Union,
+                    members,
+                } => {
+                    for member in members {
+                        push_surface(csg_member_surface(member, plane_reach));
+                    }
+                }
+                csg @ ShapeDesc::Csg { .. } => push_surface(csg_member_surface(csg, plane_reach)),
             }
             objects.push(ObjectGeometry {
                 name: object.name.clone(),

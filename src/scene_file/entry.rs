@@ -43,6 +43,8 @@ macro_rules! entry_defs {
 }
 
 object_kinds!(entry_defs);
+// A combination nested in another is an entry of its own kind, with a placement.
+entry_defs! { csg: super::csg::NestedCsgDef, shape csg; }
 
 /// Object `object`'s entry placed anew: each object the entry makes (a mesh entry's every
 /// part), by its index in the scene, with its shape.

@@ -22,6 +22,7 @@ macro_rules! object_kinds {
             cones: $crate::scene_file::shapes::ConeDef, shape cone;
             tori: $crate::scene_file::shapes::TorusDef, shape torus;
             capsules: $crate::scene_file::shapes::CapsuleDef, shape capsule;
+            csg: $crate::scene_file::csg::CsgDef, shape csg;
         }
     };
 }

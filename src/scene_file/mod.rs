@@ -11,6 +11,7 @@ mod assets;
 mod brackets;
 mod camera;
 mod camera_table;
+mod csg;
 mod entry;
 mod entry_def;
 mod error;

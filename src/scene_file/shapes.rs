@@ -263,22 +263,33 @@ impl Validator<'_> {
         let Some(transform) = placement.relative(self.origin) else {
             return Err(self.field_error(at, "scale", "the placement cannot be inverted"));
         };
-        let b = transform.bounds_to_scene(&shape.bounds());
-        let reach = b.min.abs().max(b.max.abs()).max_element() as f64;
+        self.within_reach(at, "shape", &transform.bounds_to_scene(&shape.bounds()))?;
+        Ok(ShapeDesc::Transformed {
+            shape: Box::new(shape),
+            transform,
+        })
+    }
+
+    /// That `what`, placed within `bounds`, lies within the coordinate limit of the camera
+    /// (the placement's `scale` took it there, or its turn and move).
+    pub(super) fn within_reach(
+        &self,
+        at: &Item,
+        what: &str,
+        bounds: &crate::geometry::Aabb,
+    ) -> Result<(), SceneError> {
+        let reach = bounds.min.abs().max(bounds.max.abs()).max_element() as f64;
         if reach.is_nan() || reach > limits::MAX_COORDINATE {
             return Err(self.field_error(
                 at,
                 "scale",
                 format!(
-                    "the shape, placed, reaches {reach:e} from the camera, more than {:e}",
+                    "the {what}, placed, reaches {reach:e} from the camera, more than {:e}",
                     limits::MAX_COORDINATE
                 ),
             ));
         }
-        Ok(ShapeDesc::Transformed {
-            shape: Box::new(shape),
-            transform,
-        })
+        Ok(())
     }
 
     /// The corners of a flat convex shape (a polygon or a triangle), checked as one.
@@ -448,7 +459,7 @@ pub(super) struct ConeDef {
     radius: f32,
     top_radius: Option<f32>,
     height: f32,
-    caps: Option<bool>,
+    pub(super) caps: Option<bool>,
     pub(super) material: Option<String>,
     pub(super) shadow: Option<bool>,
     pub(super) translate: Option<P3>,

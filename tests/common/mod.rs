@@ -3,6 +3,8 @@
 //! and uses the part it needs (so some of it is unused in any one suite).
 #![allow(dead_code)]
 
+pub mod povray;
+
 use prism::camera::Camera;
 use prism::render::{self, RenderSettings};
 use prism::scene::{PreparedScene, Scene};
