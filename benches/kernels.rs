@@ -45,6 +45,7 @@ fn bvh(c: &mut Criterion) {
             Primitive {
                 surface: Surface::Shape(Shape::Sphere(Sphere::new(Vec3::new(x, y, -50.0), 1.0))),
                 object: i,
+                material: i,
             }
         })
         .collect();

@@ -26,8 +26,9 @@ const COMBINATIONS: [(&str, &str); 5] = [
         "[[csg]]\noperation = \"difference\"\nmaterial = \"red\"\nscale = [1.2, 0.8, 1]\n\
          rotate = [20, 35, 0]\ntranslate = [-2, 0.4, 0]\n\
          [[csg.members]]\ntype = \"box\"\nmin = [-0.8, -0.8, -0.8]\nmax = [0.8, 0.8, 0.8]\n\
-         [[csg.members]]\ntype = \"sphere\"\ncenter = [0, 0.5, 0.5]\nradius = 0.9\n",
-        "difference { box { <-0.8, -0.8, -0.8>, <0.8, 0.8, 0.8> } sphere { <0, 0.5, 0.5>, 0.9 } \
+         [[csg.members]]\ntype = \"sphere\"\ncenter = [0, 0.5, 0.5]\nradius = 0.9\nmaterial = \"cyan\"\n",
+        "difference { box { <-0.8, -0.8, -0.8>, <0.8, 0.8, 0.8> } \
+         sphere { <0, 0.5, 0.5>, 0.9 pigment { rgb <0, 1, 1> } finish { F } } \
          pigment { rgb <1, 0, 0> } finish { F } scale <1.2, 0.8, 1> rotate <20, 35, 0> \
          translate <-2, 0.4, 0> }",
     ),
@@ -78,8 +79,9 @@ const COMBINATIONS: [(&str, &str); 5] = [
     ),
 ];
 
-const COLOURS: [(&str, [u8; 3]); 5] = [
+const COLOURS: [(&str, [u8; 3]); 6] = [
     ("red", [255, 0, 0]),
+    ("cyan", [0, 255, 255]),
     ("green", [0, 255, 0]),
     ("blue", [0, 0, 255]),
     ("yellow", [255, 255, 0]),
@@ -408,7 +410,7 @@ fn every_bad_combination_is_refused_with_its_line() {
             format!(
                 "operation = \"union\"\n{sphere}[[csg.members]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"x\" # <-\n"
             ),
-            "members take the whole's material",
+            "no material named \"x\"",
         ),
         (
             format!("operation = \"union\"\n{sphere}[[csg.members]] # <-\nradius = 1\n"),
@@ -459,4 +461,59 @@ fn a_top_union_is_its_members_and_combinations_are_bounded() {
         .unwrap_err()
         .to_string();
     assert!(shown.contains("at most 256 solids"), "{shown}");
+}
+
+/// A member's own material colours its surface, a nested combination's colours its
+/// members that give none, and the rest take the whole's: in a union at the top (traced as
+/// its members) and in a difference (traced as one solid). Placed again by a transform
+/// edit, the members keep theirs.
+#[test]
+fn members_take_their_own_materials() {
+    let dir = common::Dir::new();
+    let path = dir.write(
+        "members.toml",
+        "[camera]\neye = [0, 0, 10]\nlook_at = [0, 0, 0]\nfov = 40\n\
+         [render]\nambient = [1, 1, 1]\nbackground = [0, 0, 0]\n\
+         [materials.red]\ncolor = [1, 0, 0]\nambient = 1\ndiffuse = 0\nspecular = 0\n\
+         [materials.green]\ncolor = [0, 1, 0]\nambient = 1\ndiffuse = 0\nspecular = 0\n\
+         [materials.blue]\ncolor = [0, 0, 1]\nambient = 1\ndiffuse = 0\nspecular = 0\n\
+         [materials.white]\ncolor = [1, 1, 1]\nambient = 1\ndiffuse = 0\nspecular = 0\n\
+         [[csg]]\noperation = \"union\"\nmaterial = \"red\"\n\
+         [[csg.members]]\ntype = \"sphere\"\ncenter = [-3, 1.5, 0]\nradius = 0.5\n\
+         [[csg.members]]\ntype = \"sphere\"\ncenter = [-1, 1.5, 0]\nradius = 0.5\nmaterial = \"green\"\n\
+         [[csg.members]]\ntype = \"csg\"\noperation = \"merge\"\nmaterial = \"blue\"\n\
+         [[csg.members.members]]\ntype = \"sphere\"\ncenter = [1, 1.5, 0]\nradius = 0.5\n\
+         [[csg.members.members]]\ntype = \"sphere\"\ncenter = [3, 1.5, 0]\nradius = 0.5\nmaterial = \"white\"\n\
+         [[csg]]\noperation = \"difference\"\nmaterial = \"red\"\n\
+         [[csg.members]]\ntype = \"box\"\nmin = [-1, -2.5, -1]\nmax = [1, -0.5, 1]\n\
+         [[csg.members]]\ntype = \"sphere\"\ncenter = [0.5, -1.5, 1]\nradius = 0.6\nmaterial = \"green\"\n",
+    );
+    let loaded = prism::scene_file::load_scene_file(&path).result.unwrap();
+    let scene = loaded.scene.clone();
+    let (red, green, blue, white) = (Vec3::X, Vec3::Y, Vec3::Z, Vec3::ONE);
+    for (x, y, want) in [
+        (-3.0f32, 1.5f32, red),
+        (-1.0, 1.5, green),
+        (1.0, 1.5, blue),
+        (3.0, 1.5, white),
+        (-0.5, -1.5, red),
+        (0.5, -1.5, green),
+    ] {
+        assert_eq!(seen(&scene, x, y), want, "at ({x}, {y})");
+    }
+    // Moved by the viewer's transform row: the same colours, 0.5 higher.
+    let mut moved = scene.clone();
+    let placement = prism::scene::ObjectPlacement {
+        translate: DVec3::new(0.0, 0.5, 0.0),
+        ..Default::default()
+    };
+    loaded.place_object(&mut moved, 0, placement).unwrap();
+    loaded.place_object(&mut moved, 1, placement).unwrap();
+    for (x, y, want) in [
+        (-1.0f32, 2.0f32, green),
+        (3.0, 2.0, white),
+        (0.5, -1.0, green),
+    ] {
+        assert_eq!(seen(&moved, x, y), want, "moved, at ({x}, {y})");
+    }
 }

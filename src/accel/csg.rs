@@ -146,12 +146,19 @@ pub struct Csg {
     leaves: Vec<CsgLeaf>,
     /// Whether each leaf's outward normal points into the solid (its normal is turned).
     turned: Vec<bool>,
+    /// The material each leaf's surface takes, as the appearance numbers them.
+    materials: Vec<u32>,
     bounds: Aabb,
 }
 
 impl Csg {
-    /// The solid of tree `root` over `leaves` (numbered in the tree's order).
-    pub fn new(root: CsgNode, leaves: Vec<CsgLeaf>) -> Self {
+    /// The solid of tree `root` over `leaves` (numbered in the tree's order), each leaf's
+    /// surface of the material `materials` gives it.
+    ///
+    /// # Panics
+    /// If there is not one material per leaf.
+    pub fn new(root: CsgNode, leaves: Vec<CsgLeaf>, materials: Vec<u32>) -> Self {
+        assert_eq!(materials.len(), leaves.len(), "one material per leaf");
         let mut turned = vec![false; leaves.len()];
         mark_turned(&root, false, &mut turned);
         let bounds = node_bounds(&root, &leaves);
@@ -159,7 +166,17 @@ impl Csg {
             root,
             leaves,
             turned,
+            materials,
             bounds,
+        }
+    }
+
+    /// The material of the member `hit` is on.
+    #[inline]
+    pub fn material_slot(&self, hit: &ShapeHit) -> u32 {
+        match hit.detail {
+            HitDetail::Csg { leaf, .. } => self.materials[leaf as usize],
+            detail => unreachable!("hit {detail:?} is not on a CSG solid"),
         }
     }
 

@@ -549,6 +549,7 @@ mod tests {
                     0.5,
                 ))),
                 object: i,
+                material: i,
             })
             .collect();
         let buffer = LightBuffer::new(Vec3::ZERO, &beads);
@@ -584,6 +585,7 @@ mod tests {
                 2.0,
             ))),
             object: 0,
+            material: 0,
         };
         let buffer = LightBuffer::new(light, &[around]);
         let census = buffer.census();
@@ -611,6 +613,7 @@ mod tests {
             .map(|d| Primitive {
                 surface: Surface::Shape(Shape::Sphere(Sphere::new(*d * 10.0, 0.01))),
                 object: 0,
+                material: 0,
             })
             .collect();
         let buffer = LightBuffer::new(light, &primitives);

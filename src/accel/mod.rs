@@ -222,6 +222,17 @@ impl Accelerator {
             .uv_frame(q, surface, &hit.shape)
     }
 
+    /// The material `hit`'s surface takes, as the appearance numbers them (the object's own,
+    /// or a CSG member's).
+    #[inline]
+    pub fn material_slot(&self, hit: &Hit) -> u32 {
+        let primitive = &self.primitives[hit.primitive as usize];
+        match &primitive.surface {
+            Surface::Csg(csg) => csg.material_slot(&hit.shape),
+            _ => primitive.material,
+        }
+    }
+
     /// The object `hit` is on.
     #[inline]
     pub fn object(&self, hit: &Hit) -> u32 {

@@ -15,6 +15,10 @@ pub struct Primitive {
     pub surface: Surface,
     /// Index of the object it belongs to, into the scene's objects.
     pub object: u32,
+    /// The material its surface takes, as the appearance numbers them: the object's own
+    /// (`object`), or a CSG member's (a union's members are primitives of one object). A
+    /// combination's members name theirs themselves (`Csg::material_slot`).
+    pub material: u32,
 }
 
 /// What a primitive is (a closed set).

@@ -118,16 +118,25 @@ impl Appearance {
         }
     }
 
+    /// The same appearance with `members`' materials numbered after the objects' own: the
+    /// CSG members that give materials of their own (`Scene::member_materials`).
+    pub fn with_member_materials(mut self, members: Vec<Material>) -> Self {
+        self.materials.extend(members);
+        self.shadow.update_any(&self.materials);
+        self
+    }
+
     /// The same appearance with fog (or none).
     pub fn with_fog(mut self, fog: Option<Fog>) -> Self {
         self.fog = fog;
         self
     }
 
-    /// Object `object`'s material.
+    /// Material `slot`: object `slot`'s own, or past the objects, a CSG member's
+    /// (`Accelerator::material_slot` gives a hit's).
     #[inline]
-    pub fn material(&self, object: u32) -> &Material {
-        &self.materials[object as usize]
+    pub fn material(&self, slot: u32) -> &Material {
+        &self.materials[slot as usize]
     }
 
     /// Replaces object `object`'s material (already validated, as the scene loader and

@@ -297,7 +297,8 @@ impl<'a> Integrator<'a> {
         self.signature
             .surface(hit.primitive, hit.shape.detail.part());
         let object = self.accel().object(hit);
-        let material = self.appearance.material(object);
+        // A CSG member's own, or the object's.
+        let material = self.appearance.material(self.accel().material_slot(hit));
         let mut surface = self.accel().surface(q, hit);
         if let Some(relief) = &material.relief {
             surface.shading = self.relief_normal(relief, q, hit, object, &surface);
@@ -373,7 +374,9 @@ impl<'a> Integrator<'a> {
             Some(o) => self.appearance.material(o).eta.unwrap_or(1.0),
             None => 1.0,
         };
-        let own = at.material.eta.unwrap_or(1.0);
+        // The medium inside is the object's (a CSG solid's whole, whatever member's surface
+        // is crossed).
+        let own = self.appearance.material(at.object).eta.unwrap_or(1.0);
         if at.entering {
             eta_of(self.media.current()) / own
         } else {

@@ -217,7 +217,7 @@ pub enum ShapeDesc {
         /// How the members combine.
         operation: CsgOperation,
         /// Two or more members.
-        members: Vec<ShapeDesc>,
+        members: Vec<CsgMember>,
     },
     /// A shape in its own space under a transform its own parameters cannot express (a
     /// sphere scaled unevenly into an ellipsoid, a tilted cylinder).
@@ -230,7 +230,51 @@ pub enum ShapeDesc {
     },
 }
 
+/// A member of a CSG combination: its shape (placed in the scene's space) and the material
+/// its surface takes, when it gives one of its own.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CsgMember {
+    /// The shape: a closed solid, a plane, a transformed solid or a combination.
+    pub shape: ShapeDesc,
+    /// Its own material: for its surface, or a combination's for its members that give
+    /// none. None takes the enclosing combination's (at the top, the object's).
+    pub material: Option<Material>,
+}
+
 impl ShapeDesc {
+    /// Visits a combination's solids in its tree's order (the order its hits number them),
+    /// each with the material its surface takes: its own, or the nearest enclosing
+    /// member's; None where that is the object's own. Nothing for any other shape.
+    pub fn csg_leaves<'s>(&'s self, visit: &mut impl FnMut(&'s ShapeDesc, Option<&'s Material>)) {
+        fn walk<'s>(
+            members: &'s [CsgMember],
+            inherited: Option<&'s Material>,
+            visit: &mut impl FnMut(&'s ShapeDesc, Option<&'s Material>),
+        ) {
+            for member in members {
+                let material = member.material.as_ref().or(inherited);
+                match &member.shape {
+                    ShapeDesc::Csg { members, .. } => walk(members, material, visit),
+                    leaf => visit(leaf, material),
+                }
+            }
+        }
+        if let ShapeDesc::Csg { members, .. } = self {
+            walk(members, None, visit);
+        }
+    }
+
+    /// Gives a combination's members the materials of `old`'s (the same combination,
+    /// placed elsewhere), member by member; nothing for any other shape.
+    pub fn keep_member_materials(&mut self, old: &ShapeDesc) {
+        if let (ShapeDesc::Csg { members, .. }, ShapeDesc::Csg { members: was, .. }) = (self, old) {
+            for (member, old) in members.iter_mut().zip(was) {
+                member.material = old.material.clone();
+                member.shape.keep_member_materials(&old.shape);
+            }
+        }
+    }
+
     /// The object's own origin, to which procedural textures are attached.
     pub fn origin(&self) -> Vec3 {
         match self {
@@ -247,7 +291,7 @@ impl ShapeDesc {
             ShapeDesc::Mesh { transform, .. } | ShapeDesc::Transformed { transform, .. } => {
                 transform.to_scene().translation.into()
             }
-            ShapeDesc::Csg { members, .. } => members[0].origin(),
+            ShapeDesc::Csg { members, .. } => members[0].shape.origin(),
         }
     }
 
@@ -318,7 +362,7 @@ impl ShapeDesc {
                 transform.bounds_to_scene(&shape.bounds())
             }
             ShapeDesc::Csg { operation, members } => {
-                let mut boxes = members.iter().map(ShapeDesc::bounds);
+                let mut boxes = members.iter().map(|m| m.shape.bounds());
                 match operation {
                     CsgOperation::Union | CsgOperation::Merge => {
                         boxes.fold(Aabb::EMPTY, |a, b| a.union(b))
@@ -327,13 +371,13 @@ impl ShapeDesc {
                     // Within every member's box; a plane's (its point's) bounds nothing.
                     CsgOperation::Intersection => members
                         .iter()
-                        .filter(|m| !matches!(m, ShapeDesc::Plane { .. }))
-                        .map(ShapeDesc::bounds)
+                        .filter(|m| !matches!(m.shape, ShapeDesc::Plane { .. }))
+                        .map(|m| m.shape.bounds())
                         .reduce(|a, b| Aabb {
                             min: a.min.max(b.min),
                             max: a.max.min(b.max),
                         })
-                        .unwrap_or_else(|| members[0].bounds()),
+                        .unwrap_or_else(|| members[0].shape.bounds()),
                 }
             }
             one => one.solid().expect("every other kind is one shape").bounds(),
@@ -428,7 +472,10 @@ impl ShapeDesc {
                 operation: *operation,
                 members: members
                     .iter()
-                    .map(|m| m.transformed(scale, offset))
+                    .map(|m| CsgMember {
+                        shape: m.shape.transformed(scale, offset),
+                        material: m.material.clone(),
+                    })
                     .collect(),
             },
         }
@@ -445,7 +492,8 @@ impl ShapeDesc {
             ShapeDesc::Transformed { shape, .. } => shape.is_convex(),
             // Only convex solids' common part is convex.
             ShapeDesc::Csg { operation, members } => {
-                *operation == CsgOperation::Intersection && members.iter().all(|m| m.is_convex())
+                *operation == CsgOperation::Intersection
+                    && members.iter().all(|m| m.shape.is_convex())
             }
             ShapeDesc::Sphere { .. }
             | ShapeDesc::Capsule { .. }
@@ -481,6 +529,21 @@ fn moved(transform: &Transform, scale: f32, offset: Vec3) -> Transform {
 }
 
 impl Scene {
+    /// The materials of the CSG members that give one of their own (or take an enclosing
+    /// member's), in the order a prepared scene numbers them: after the objects' own, object
+    /// by object, each combination's solids in its tree's order.
+    pub fn member_materials(&self) -> Vec<Material> {
+        let mut out = Vec::new();
+        for object in &self.objects {
+            object.shape.csg_leaves(&mut |_, material| {
+                if let Some(m) = material {
+                    out.push(m.clone());
+                }
+            });
+        }
+        out
+    }
+
     /// The box around every object (relative to `origin`); None without objects.
     pub fn bounds(&self) -> Option<Aabb> {
         self.objects

@@ -110,16 +110,30 @@ fn plane_reach(scene: &Scene) -> f32 {
 }
 
 /// The surface of a CSG member (or a whole CSG solid) on its own: a closed shape, a plane
-/// (as a disc of radius `reach`), a transformed shape, or a combination.
-fn csg_member_surface(desc: &ShapeDesc, reach: f32) -> Surface {
+/// (as a disc of radius `reach`), a transformed shape, or a combination; with the material
+/// of a lone solid's surface. `materials` gives each solid's material in the tree's order
+/// and is consumed as the solids are.
+fn csg_member_surface(
+    desc: &ShapeDesc,
+    reach: f32,
+    materials: &mut impl Iterator<Item = u32>,
+) -> (Surface, u32) {
+    let lone = |materials: &mut dyn Iterator<Item = u32>| materials.next().expect("a material");
     match csg_leaf(desc, reach) {
-        Some(CsgLeaf::Shape(shape)) => Surface::Shape(shape),
-        Some(CsgLeaf::HalfSpace(disc)) => Surface::Shape(Shape::Disc(disc)),
-        Some(CsgLeaf::Instance(instance)) => Surface::Instance(Arc::new(*instance)),
+        Some(CsgLeaf::Shape(shape)) => (Surface::Shape(shape), lone(materials)),
+        Some(CsgLeaf::HalfSpace(disc)) => (Surface::Shape(Shape::Disc(disc)), lone(materials)),
+        Some(CsgLeaf::Instance(instance)) => {
+            (Surface::Instance(Arc::new(*instance)), lone(materials))
+        }
         None => {
-            let mut leaves = Vec::new();
+            let (mut leaves, mut slots) = (Vec::new(), Vec::new());
             let root = csg_node(desc, reach, &mut leaves);
-            Surface::Csg(Arc::new(Csg::new(root, leaves)))
+            slots.extend(materials.take(leaves.len()));
+            // A combination's hits name their members' materials themselves.
+            (
+                Surface::Csg(Arc::new(Csg::new(root, leaves, slots))),
+                u32::MAX,
+            )
         }
     }
 }
@@ -147,7 +161,10 @@ fn csg_node(desc: &ShapeDesc, reach: f32, leaves: &mut Vec<CsgLeaf>) -> CsgNode 
     match desc {
         ShapeDesc::Csg { operation, members } => CsgNode::Combine {
             operation: *operation,
-            members: members.iter().map(|m| csg_node(m, reach, leaves)).collect(),
+            members: members
+                .iter()
+                .map(|m| csg_node(&m.shape, reach, leaves))
+                .collect(),
         },
         leaf => {
             leaves.push(csg_leaf(leaf, reach).expect("a leaf"));
@@ -189,15 +206,31 @@ impl Geometry {
         // One model per mesh, however many objects place it.
         let mut models: HashMap<*const Mesh, Arc<Model>> = HashMap::new();
         let plane_reach = plane_reach(scene);
+        // CSG members with materials of their own are numbered after the objects' own, in
+        // the order `Scene::member_materials` lists them.
+        let mut next_material = scene.objects.len() as u32;
         for (index, object) in scene.objects.iter().enumerate() {
             let id = index as u32;
             let mut planar_uv = None;
-            let mut push_surface = |surface| {
+            let mut member_materials = Vec::new();
+            object.shape.csg_leaves(&mut |_, material| {
+                member_materials.push(match material {
+                    Some(_) => {
+                        next_material += 1;
+                        next_material - 1
+                    }
+                    None => id,
+                })
+            });
+            let mut member_materials = member_materials.into_iter();
+            let mut push_with = |surface, material| {
                 primitives.push(Primitive {
                     surface,
                     object: id,
+                    material,
                 })
             };
+            let mut push_surface = |surface| push_with(surface, id);
             let mut push = |shape| push_surface(Surface::Shape(shape));
             match &object.shape {
                 ShapeDesc::Plane { point, normal } => {
@@ -273,10 +306,16 @@ impl Geometry {
                     members,
                 } => {
                     for member in members {
-                        push_surface(csg_member_surface(member, plane_reach));
+                        let (surface, material) =
+                            csg_member_surface(&member.shape, plane_reach, &mut member_materials);
+                        push_with(surface, material);
                     }
                 }
-                csg @ ShapeDesc::Csg { .. } => push_surface(csg_member_surface(csg, plane_reach)),
+                csg @ ShapeDesc::Csg { .. } => {
+                    let (surface, material) =
+                        csg_member_surface(csg, plane_reach, &mut member_materials);
+                    push_with(surface, material);
+                }
             }
             objects.push(ObjectGeometry {
                 name: object.name.clone(),

@@ -12,7 +12,7 @@ mod edit;
 mod geometry;
 mod prepared;
 
-pub use description::{ObjectPlacement, RenderDefaults, Scene, SceneObject, ShapeDesc};
+pub use description::{CsgMember, ObjectPlacement, RenderDefaults, Scene, SceneObject, ShapeDesc};
 pub use edit::{EditError, check_camera};
 pub use geometry::{Geometry, ObjectGeometry, PlanarUv};
 pub use prepared::{CoincidentSurfaces, PreparedScene};

@@ -130,6 +130,7 @@ impl PreparedScene {
             scene.background.clone(),
             scene.render.max_depth,
         )
+        .with_member_materials(scene.member_materials())
         .with_fog(scene.fog)
     }
 }

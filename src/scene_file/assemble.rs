@@ -94,6 +94,8 @@ impl Validator<'_> {
             .iter()
             .map(|(name, m)| Ok((name.clone(), self.material(name, m, &textures)?)))
             .collect::<Result<HashMap<_, _>, SceneError>>()?;
+        // CSG members name materials too.
+        let _ = self.materials.set(materials.clone());
 
         let mut objects = Vec::new();
         let mut origins = Vec::new();

@@ -1,7 +1,8 @@
 //! `[[csg]]`: closed solids combined (`union`, `intersection`, `difference`, `merge`), each
 //! member a table of its own (`[[csg.members]]`) with a `type` and that shape's fields,
 //! placed by its own `translate`, `rotate` and `scale` and then by the whole's. Members may
-//! be combinations themselves. Shapes with no inside (discs, polygons, triangles, open tubes
+//! be combinations themselves, and may name a `material` of their own for their part of the
+//! surface. Shapes with no inside (discs, polygons, triangles, open tubes
 //! and cones, meshes) are refused; a plane is the half of space behind it.
 
 use super::entry_def::EntryDef;
@@ -10,10 +11,11 @@ use super::placement::Placement;
 use super::shapes::{BoxDef, CapsuleDef, ConeDef, CylinderDef, PlaneDef, SphereDef, TorusDef};
 use super::validator::{Item, P3, V3, Validator};
 use crate::accel::CsgOperation;
+use crate::appearance::Material;
 use crate::geometry::Transform;
 use crate::limits;
 use crate::messages::{did_you_mean, quoted};
-use crate::scene::ShapeDesc;
+use crate::scene::{CsgMember, ShapeDesc};
 use serde::Deserialize;
 use serde::de::DeserializeOwned;
 use toml::Spanned;
@@ -149,12 +151,14 @@ impl Validator<'_> {
                 &mut *leaves
             };
             let shape = self.member(&at, member.fields(), depth, counted)?;
-            members.push(match &outer {
+            let material = self.member_material(&at, member.fields())?;
+            let shape = match &outer {
                 Some(t) => placed_by(shape, t).ok_or_else(|| {
                     self.field_error(&at, "scale", "the placement cannot be inverted")
                 })?,
                 None => shape,
-            });
+            };
+            members.push(CsgMember { shape, material });
         }
         let csg = ShapeDesc::Csg { operation, members };
         self.within_reach(at, "combination", &csg.bounds())?;
@@ -197,7 +201,6 @@ impl Validator<'_> {
         }
         for (field, why) in [
             ("name", "a member has no name of its own: name the whole"),
-            ("material", "members take the whole's material"),
             ("shadow", "the whole casts a shadow or does not"),
         ] {
             if table.contains_key(field) {
@@ -260,6 +263,37 @@ impl Validator<'_> {
         read(at, &d, &placement)
     }
 
+    /// A member's own `material`, found in the file's `[materials]`; None without one (or
+    /// when the entry is placed again for an edit, which keeps its members' materials).
+    fn member_material(
+        &self,
+        at: &Item,
+        table: &toml::Table,
+    ) -> Result<Option<Material>, SceneError> {
+        let name = match table.get("material") {
+            None => return Ok(None),
+            Some(toml::Value::String(name)) => name,
+            Some(_) => {
+                return Err(self.field_error(at, "material", "`material` must be a string"));
+            }
+        };
+        let Some(materials) = self.materials.get() else {
+            return Ok(None);
+        };
+        match materials.get(name) {
+            Some(m) => Ok(Some(m.clone())),
+            None => Err(self.field_error(
+                at,
+                "material",
+                format!(
+                    "no material named {} (see [materials]){}",
+                    quoted(name),
+                    did_you_mean(name, materials.keys().map(String::as_str))
+                ),
+            )),
+        }
+    }
+
     /// That a cylinder or cone member is closed (`caps` is not false).
     fn closed(&self, at: &Item, caps: Option<bool>, what: &str) -> Result<(), SceneError> {
         if caps == Some(false) {
@@ -305,7 +339,12 @@ fn placed_by(shape: ShapeDesc, t: &Transform) -> Option<ShapeDesc> {
             operation,
             members: members
                 .into_iter()
-                .map(|m| placed_by(m, t))
+                .map(|m| {
+                    Some(CsgMember {
+                        shape: placed_by(m.shape, t)?,
+                        material: m.material,
+                    })
+                })
                 .collect::<Option<_>>()?,
         },
         solid => ShapeDesc::Transformed {

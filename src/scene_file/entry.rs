@@ -78,8 +78,11 @@ impl LoadedScene {
                 },
             })?
             .ok_or(EditError::NoSuchObject(object))?;
-        for (i, shape) in placed.shapes {
+        for (i, mut shape) in placed.shapes {
             let o = &mut scene.objects[i];
+            // What its CSG members are made of stays (they name `[materials]` entries,
+            // which placing the entry again does not read).
+            shape.keep_member_materials(&o.shape);
             o.shape = shape;
             o.placement = placed.placement;
         }
@@ -130,6 +133,7 @@ impl LoadedScene {
             assets: Assets::Embedded(&[]),
             origin: glam::DVec3::from(file.camera.get_ref().eye),
             reads: Default::default(),
+            materials: Default::default(),
         };
         let (table, index) = (origin.table, origin.index);
         // The entry with the new placement, its span and its label; None if the file has

@@ -197,6 +197,7 @@ pub(super) fn validate_tree(
         assets,
         origin: glam::DVec3::from(eye),
         reads: Default::default(),
+        materials: Default::default(),
     };
     let result = v.scene(file);
     for read in v.reads.into_inner() {

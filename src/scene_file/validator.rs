@@ -7,6 +7,7 @@ use super::error::SceneError;
 use super::error::line_column;
 use super::fixed_array::Fixed;
 use super::spans::FieldSpans;
+use crate::appearance::Material;
 use crate::limits;
 use crate::messages::{outside_color_range, outside_length, outside_range};
 use glam::Vec3;
@@ -27,6 +28,9 @@ pub(super) struct Validator<'a> {
     pub(super) origin: glam::DVec3,
     /// The files the scene names that have been looked for, in order (from a folder only).
     pub(super) reads: std::cell::RefCell<Vec<PathBuf>>,
+    /// The file's `[materials]`, once read: what CSG members name. (Unset when an entry is
+    /// placed again for an edit, which keeps its members' materials.)
+    pub(super) materials: std::cell::OnceCell<std::collections::HashMap<String, Material>>,
 }
 
 /// Where a problem is: the span of the table it is in, and how to name that table.
