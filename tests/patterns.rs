@@ -152,3 +152,101 @@ fn a_pattern_moves_with_its_object() {
         "{colours:?}"
     );
 }
+
+/// A pattern turns and scales with its object (as POV-Ray's do when the object is
+/// transformed after its texture): a ball turned a quarter about z shows at (x, y) what the
+/// unturned ball shows at (y, −x); a ball scaled twice as large shows at (x, y) what the
+/// unscaled one shows at (x/2, y/2).
+#[test]
+fn a_pattern_turns_and_scales_with_its_object() {
+    use prism::accel::Reach;
+    use prism::geometry::Ray;
+    use prism::integrator::Integrator;
+    use prism::sampler::SampleStream;
+    use prism::scene::PreparedScene;
+    let seen = |placement: &str, x: f32, y: f32| {
+        let text = format!(
+            "[camera]\neye = [0, 0, 10]\nlook_at = [0, 0, 0]\nfov = 30\n\
+             [render]\nambient = [1, 1, 1]\nbackground = [0, 0, 0]\n\
+             [textures.m]\ntype = \"granite\"\nscale = 0.7\n\
+             [materials.m]\ntexture = \"m\"\nambient = 1\ndiffuse = 0\nspecular = 0\n\
+             [[spheres]]\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"m\"\n{placement}\n"
+        );
+        let scene = parse_scene(&text, Path::new("m.toml"), Path::new(".")).unwrap();
+        let prepared = PreparedScene::new(&scene);
+        let origin = glam::Vec3::new(x, y, 5.0) - scene.origin.as_vec3();
+        Integrator::new(&prepared, 0.0)
+            .trace_primary(
+                Reach::After(0.0),
+                || Ray::new(origin, -glam::Vec3::Z),
+                SampleStream::new(0, 0, 0),
+            )
+            .color
+    };
+    let mut colours = Vec::new();
+    for (x, y) in [(0.1f32, 0.2f32), (-0.4, 0.3), (0.5, -0.6), (0.3, 0.45)] {
+        let plain = seen("", y, -x);
+        let turned = seen("rotate = [0, 0, 90]", x, y);
+        assert!(
+            (plain - turned).abs().max_element() < 1e-3,
+            "turned at ({x}, {y}): {plain} against {turned}"
+        );
+        let half = seen("", x / 2.0, y / 2.0);
+        let scaled = seen("scale = 2", x, y);
+        assert!(
+            (half - scaled).abs().max_element() < 1e-3,
+            "scaled at ({x}, {y}): {half} against {scaled}"
+        );
+        colours.push(plain);
+    }
+    // Not one flat colour: a pattern that stayed put would differ.
+    assert!(
+        colours
+            .iter()
+            .any(|c| (*c - colours[0]).abs().max_element() > 0.05),
+        "{colours:?}"
+    );
+    // Turned, it is not the pattern it was.
+    assert!(
+        (seen("", 0.3, 0.45) - seen("rotate = [0, 0, 90]", 0.3, 0.45))
+            .abs()
+            .max_element()
+            > 0.01
+    );
+}
+
+/// A turned object's pattern is fixed to the object, not to the camera: the same surface
+/// point shows the same colour seen from two eyes (positions are kept relative to the eye,
+/// and the pattern's origin must not follow it).
+#[test]
+fn a_turned_objects_pattern_does_not_follow_the_camera() {
+    use prism::accel::Reach;
+    use prism::geometry::Ray;
+    use prism::integrator::Integrator;
+    use prism::sampler::SampleStream;
+    use prism::scene::PreparedScene;
+    let point = glam::Vec3::new(0.3, 0.4, (1.0f32 - 0.25).sqrt());
+    let seen_from = |eye: glam::Vec3| {
+        let text = format!(
+            "[camera]\neye = {:?}\nlook_at = [0, 0, 0]\nfov = 30\n\
+             [render]\nambient = [1, 1, 1]\nbackground = [0, 0, 0]\n\
+             [textures.m]\ntype = \"marble\"\nscale = 0.3\n\
+             [materials.m]\ntexture = \"m\"\nambient = 1\ndiffuse = 0\nspecular = 0\n\
+             [[spheres]]\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"m\"\nrotate = [20, 30, 40]\n",
+            eye.to_array()
+        );
+        let scene = parse_scene(&text, Path::new("m.toml"), Path::new(".")).unwrap();
+        let prepared = PreparedScene::new(&scene);
+        let origin = eye - scene.origin.as_vec3();
+        Integrator::new(&prepared, 0.0)
+            .trace_primary(
+                Reach::After(0.0),
+                || Ray::new(origin, (point - eye).normalize()),
+                SampleStream::new(0, 0, 0),
+            )
+            .color
+    };
+    let a = seen_from(glam::Vec3::new(0.0, 0.0, 10.0));
+    let b = seen_from(glam::Vec3::new(4.0, 3.0, 9.0));
+    assert!((a - b).abs().max_element() < 1e-3, "{a} against {b}");
+}

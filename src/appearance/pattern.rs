@@ -1,6 +1,7 @@
 //! Procedural (solid) patterns, POV-Ray's kind: a value from 0 to 1 at each object-local
-//! position (measured from the object's origin), from gradient noise (Perlin's improved noise, 2002) summed over
-//! octaves, looked up in a colour map. A pattern is a function of the point alone: the same
+//! position (from the object's origin, turned and scaled back by its placement), from
+//! gradient noise (Perlin's improved noise, 2002) summed over octaves, looked up in a colour
+//! map. A pattern is a function of the point alone: the same
 //! at any thread count, and the same image at any scale when its `scale` scales with the
 //! scene.
 

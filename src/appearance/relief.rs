@@ -4,6 +4,7 @@
 //! picture's right, up and the surface's normal (tangent space, as glTF and most tools bake
 //! them). The true surface still decides sides, shadows and where rays start.
 
+use super::pattern::Pattern;
 use super::texture::{Texture, UvTransform};
 use crate::geometry::UvFrame;
 use glam::Vec3A;
@@ -50,13 +51,14 @@ impl Relief {
     }
 
     /// The tilted shading normal at a point whose shading normal is `ns` (unit, on the
-    /// side the surface's normal faces), at `local` (the point relative to its object's
-    /// origin), with its texture frame `frame` (read only when `needs_uv`). Where the frame
-    /// gives no direction (a pole, a degenerate map), `ns` is returned unchanged.
+    /// side the surface's normal faces). `solid` gives a pattern's brightness gradient at
+    /// the point, in the scene's space (the object's solid textures are in its own);
+    /// `frame` gives its texture frame (read only when `needs_uv`). Where the frame gives
+    /// no direction (a pole, a degenerate map), `ns` is returned unchanged.
     pub fn shading_normal(
         &self,
         ns: Vec3A,
-        local: Vec3A,
+        solid: impl FnOnce(&Pattern) -> Vec3A,
         frame: impl FnOnce() -> UvFrame,
     ) -> Vec3A {
         if self.is_flat() {
@@ -65,7 +67,7 @@ impl Relief {
         let tilted = match self {
             Relief::Bump { height, depth } => {
                 let gradient = match height {
-                    Texture::Pattern(pattern) => pattern.brightness_gradient(local),
+                    Texture::Pattern(pattern) => solid(pattern),
                     Texture::Image { image, uv } => {
                         let frame = frame();
                         let (u, v) = uv.apply(frame.uv);

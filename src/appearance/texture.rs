@@ -266,9 +266,10 @@ fn floor_to_int(x: f32) -> i64 {
     truncated.saturating_sub(((truncated as f32) > x) as i64)
 }
 
-/// What colours a surface. Procedural patterns are evaluated on the point relative to the
-/// object's own origin (so they move with the object and keep their precision far from the
-/// world origin); images on the shape's (u, v).
+/// What colours a surface. Procedural patterns are evaluated on the object-local point
+/// (relative to the object's own origin, turned and scaled back by its placement: they
+/// move with the object and keep their precision far from the world origin); images on the
+/// shape's (u, v).
 #[derive(Clone, Debug, PartialEq)]
 pub enum Texture {
     /// One colour everywhere.
@@ -364,7 +365,8 @@ impl UvTransform {
 }
 
 impl Texture {
-    /// The colour at texture coordinates `uv` (images) or at `local`, the point relative to the object's origin (patterns).
+    /// The colour at texture coordinates `uv` (images) or at `local`, the object-local point
+    /// (patterns).
     #[inline]
     pub fn eval(&self, uv: (f32, f32), local: Vec3A) -> Vec3A {
         match self {

@@ -27,7 +27,7 @@ impl Integrator<'_> {
         } else {
             self.accel().uv(at.q, &at.surface, at.hit)
         };
-        let base = material.texture.eval(uv, p - object.origin);
+        let base = material.texture.eval(uv, object.texture_point(p));
         if !material.texture.needs_uv() {
             self.signature.pattern(base);
         }

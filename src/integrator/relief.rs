@@ -18,9 +18,13 @@ impl Integrator<'_> {
         surface: &SurfacePoint,
     ) -> Vec3A {
         let geometry = self.geometry.object(object);
+        let p = surface.point;
         relief.shading_normal(
             surface.shading,
-            surface.point - geometry.origin,
+            |pattern| {
+                let local = pattern.brightness_gradient(geometry.texture_point(p));
+                geometry.texture_gradient_to_scene(local)
+            },
             || match geometry.planar_uv {
                 Some(planar) => planar.uv_frame(surface.point),
                 None => self.accel().uv_frame(q, surface, hit),

@@ -288,8 +288,11 @@ impl ShapeDesc {
             ShapeDesc::Polygon { vertices } => vertices[0],
             ShapeDesc::Triangle { vertices } => vertices[0],
             ShapeDesc::Tetrahedron { vertices } => vertices.iter().sum::<Vec3>() / 4.0,
-            ShapeDesc::Mesh { transform, .. } | ShapeDesc::Transformed { transform, .. } => {
-                transform.to_scene().translation.into()
+            // A mesh's file has its own origin; a transformed shape's is where its own
+            // origin is placed.
+            ShapeDesc::Mesh { transform, .. } => transform.to_scene().translation.into(),
+            ShapeDesc::Transformed { shape, transform } => {
+                transform.to_scene().transform_point3(shape.origin())
             }
             ShapeDesc::Csg { members, .. } => members[0].shape.origin(),
         }

@@ -2,14 +2,14 @@
 //! acceleration layer, and what shading needs to know of each object's shape. Built when
 //! geometry changes, and never for an appearance edit.
 
-use super::description::{Scene, ShapeDesc};
+use super::description::{ObjectPlacement, Scene, ShapeDesc};
 use crate::accel::{
     AccelOptions, Accelerator, Csg, CsgLeaf, CsgNode, CsgOperation, Instance, Model, Primitive,
     Surface,
 };
 use crate::geometry::{Disc, Mesh, Shape, Triangle, UvFrame, picture_axes};
 use crate::limits;
-use glam::{Vec3, Vec3A};
+use glam::{DMat3, DVec3, Mat3A, Vec3, Vec3A};
 use std::collections::HashMap;
 use std::sync::Arc;
 
@@ -20,6 +20,9 @@ pub struct ObjectGeometry {
     pub name: String,
     /// Procedural textures are evaluated relative to this point.
     pub origin: Vec3A,
+    /// The inverse of the object's `rotate` and `scale` (its entry's placement), which turn
+    /// and scale its solid textures with it; None when it neither turns nor scales.
+    pub texture_axes: Option<Mat3A>,
     /// For polygons: (u, v) in [0, 1] over the polygon's extent in its own plane.
     pub planar_uv: Option<PlanarUv>,
     /// A polygon or triangle: no inside, so both its sides face out. (A polygon file is
@@ -29,6 +32,44 @@ pub struct ObjectGeometry {
     /// A convex solid or a flat convex polygon: a ray leaving its outside cannot meet it
     /// again (not a mesh, whose bumps may shadow each other).
     pub convex: bool,
+}
+
+impl ObjectGeometry {
+    /// Where scene point `p` lies in the object's solid textures: relative to its origin,
+    /// turned and scaled back by its placement (so a pattern turns and scales with it).
+    #[inline]
+    pub fn texture_point(&self, p: Vec3A) -> Vec3A {
+        let local = p - self.origin;
+        match self.texture_axes {
+            None => local,
+            Some(m) => m * local,
+        }
+    }
+
+    /// A gradient taken in the object's solid textures (per unit of `texture_point`), as a
+    /// gradient in the scene's space: the chain rule through `texture_point`.
+    #[inline]
+    pub fn texture_gradient_to_scene(&self, g: Vec3A) -> Vec3A {
+        match self.texture_axes {
+            None => g,
+            Some(m) => m.transpose() * g,
+        }
+    }
+}
+
+/// The inverse of `placement`'s turn and scale; None when it has neither.
+fn texture_axes(placement: &ObjectPlacement) -> Option<Mat3A> {
+    if placement.rotate == Vec3::ZERO && placement.scale == DVec3::ONE {
+        return None;
+    }
+    let [x, y, z] = placement
+        .rotate
+        .to_array()
+        .map(|d| (d as f64).rem_euclid(360.0).to_radians());
+    let rotation =
+        DMat3::from_rotation_z(z) * DMat3::from_rotation_y(y) * DMat3::from_rotation_x(x);
+    let linear = rotation * DMat3::from_diagonal(placement.scale);
+    Some(Mat3A::from(linear.inverse().as_mat3()))
 }
 
 /// Texture coordinates over a polygon's extent in its own plane.
@@ -320,6 +361,7 @@ impl Geometry {
             objects.push(ObjectGeometry {
                 name: object.name.clone(),
                 origin: object.shape.origin().into(),
+                texture_axes: texture_axes(&object.placement),
                 planar_uv,
                 flat: object.shape.is_flat(),
                 convex: object.shape.is_convex(),
