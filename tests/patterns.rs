@@ -102,16 +102,32 @@ fn the_example_patterns_are_the_same_on_any_number_of_threads() {
     assert!(colours.len() > 2000, "{} colours", colours.len());
 }
 
-/// A pattern is fixed to its object: a ball moved sideways, seen at the same point of its
-/// surface, shows the same colour there (its marble came along).
-#[test]
-fn a_pattern_moves_with_its_object() {
+/// The colour a ray from `from` (world coordinates) along `dir` brings back in the scene of
+/// `text`.
+fn colour_along(text: &str, from: glam::Vec3, dir: glam::Vec3) -> glam::Vec3 {
     use prism::accel::Reach;
     use prism::geometry::Ray;
     use prism::integrator::Integrator;
     use prism::sampler::SampleStream;
     use prism::scene::PreparedScene;
-    let scene = |ball: f32| {
+    let scene = parse_scene(text, Path::new("m.toml"), Path::new(".")).unwrap();
+    let prepared = PreparedScene::new(&scene);
+    let origin = from - scene.origin.as_vec3();
+    Integrator::new(&prepared, 0.0)
+        .trace_primary(
+            Reach::After(0.0),
+            || Ray::new(origin, dir.normalize()),
+            SampleStream::new(0, 0, 0),
+        )
+        .color
+}
+
+/// A pattern is fixed to its object: a ball moved sideways, seen at the same point of its
+/// surface, shows the same colour there (its marble came along).
+#[test]
+fn a_pattern_moves_with_its_object() {
+    // The colour seen along -z through (x, y), from in front of the ball.
+    let seen = |ball: f32, x: f32, y: f32| {
         let text = format!(
             "[camera]\neye = [0, 0, 10]\nlook_at = [0, 0, 0]\nfov = 30\n\
              [render]\nambient = [1, 1, 1]\nbackground = [0, 0, 0]\n\
@@ -119,20 +135,7 @@ fn a_pattern_moves_with_its_object() {
              [materials.m]\ntexture = \"m\"\nambient = 1\ndiffuse = 0\nspecular = 0\n\
              [[spheres]]\ncenter = [{ball}, 0, 0]\nradius = 1\nmaterial = \"m\"\n"
         );
-        parse_scene(&text, Path::new("m.toml"), Path::new(".")).unwrap()
-    };
-    // The colour seen along -z through (x, y), from in front of the ball.
-    let seen = |ball: f32, x: f32, y: f32| {
-        let scene = scene(ball);
-        let prepared = PreparedScene::new(&scene);
-        let origin = glam::Vec3::new(x, y, 5.0) - scene.origin.as_vec3();
-        Integrator::new(&prepared, 0.0)
-            .trace_primary(
-                Reach::After(0.0),
-                || Ray::new(origin, -glam::Vec3::Z),
-                SampleStream::new(0, 0, 0),
-            )
-            .color
+        colour_along(&text, glam::Vec3::new(x, y, 5.0), -glam::Vec3::Z)
     };
     let mut colours = Vec::new();
     for (x, y) in [(0.1f32, 0.2f32), (-0.4, 0.3), (0.5, -0.6), (0.0, 0.0)] {
@@ -159,11 +162,6 @@ fn a_pattern_moves_with_its_object() {
 /// unscaled one shows at (x/2, y/2).
 #[test]
 fn a_pattern_turns_and_scales_with_its_object() {
-    use prism::accel::Reach;
-    use prism::geometry::Ray;
-    use prism::integrator::Integrator;
-    use prism::sampler::SampleStream;
-    use prism::scene::PreparedScene;
     let seen = |placement: &str, x: f32, y: f32| {
         let text = format!(
             "[camera]\neye = [0, 0, 10]\nlook_at = [0, 0, 0]\nfov = 30\n\
@@ -172,16 +170,7 @@ fn a_pattern_turns_and_scales_with_its_object() {
              [materials.m]\ntexture = \"m\"\nambient = 1\ndiffuse = 0\nspecular = 0\n\
              [[spheres]]\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"m\"\n{placement}\n"
         );
-        let scene = parse_scene(&text, Path::new("m.toml"), Path::new(".")).unwrap();
-        let prepared = PreparedScene::new(&scene);
-        let origin = glam::Vec3::new(x, y, 5.0) - scene.origin.as_vec3();
-        Integrator::new(&prepared, 0.0)
-            .trace_primary(
-                Reach::After(0.0),
-                || Ray::new(origin, -glam::Vec3::Z),
-                SampleStream::new(0, 0, 0),
-            )
-            .color
+        colour_along(&text, glam::Vec3::new(x, y, 5.0), -glam::Vec3::Z)
     };
     let mut colours = Vec::new();
     for (x, y) in [(0.1f32, 0.2f32), (-0.4, 0.3), (0.5, -0.6), (0.3, 0.45)] {
@@ -220,11 +209,6 @@ fn a_pattern_turns_and_scales_with_its_object() {
 /// and the pattern's origin must not follow it).
 #[test]
 fn a_turned_objects_pattern_does_not_follow_the_camera() {
-    use prism::accel::Reach;
-    use prism::geometry::Ray;
-    use prism::integrator::Integrator;
-    use prism::sampler::SampleStream;
-    use prism::scene::PreparedScene;
     let point = glam::Vec3::new(0.3, 0.4, (1.0f32 - 0.25).sqrt());
     let seen_from = |eye: glam::Vec3| {
         let text = format!(
@@ -235,16 +219,7 @@ fn a_turned_objects_pattern_does_not_follow_the_camera() {
              [[spheres]]\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"m\"\nrotate = [20, 30, 40]\n",
             eye.to_array()
         );
-        let scene = parse_scene(&text, Path::new("m.toml"), Path::new(".")).unwrap();
-        let prepared = PreparedScene::new(&scene);
-        let origin = eye - scene.origin.as_vec3();
-        Integrator::new(&prepared, 0.0)
-            .trace_primary(
-                Reach::After(0.0),
-                || Ray::new(origin, (point - eye).normalize()),
-                SampleStream::new(0, 0, 0),
-            )
-            .color
+        colour_along(&text, eye, point - eye)
     };
     let a = seen_from(glam::Vec3::new(0.0, 0.0, 10.0));
     let b = seen_from(glam::Vec3::new(4.0, 3.0, 9.0));
