@@ -29,7 +29,7 @@ pub use csg::{Csg, CsgLeaf, CsgNode, CsgOperation};
 pub use first_hit::{Candidate, FirstHitTiles, TileCensus};
 pub use instance::{Instance, Model};
 pub use light_buffer::{LightBuffer, LightBufferCensus};
-pub use primitive::{Primitive, Surface};
+pub use primitive::{CSG_MEMBERS_MATERIAL, Primitive, Surface};
 
 /// The most candidates a first-hit tile lists before it is left to the BVH.
 pub use first_hit::MAX_CANDIDATES;
@@ -222,15 +222,19 @@ impl Accelerator {
             .uv_frame(q, surface, &hit.shape)
     }
 
-    /// The material `hit`'s surface takes, as the appearance numbers them (the object's own,
-    /// or a CSG member's).
+    /// The object `hit` is on, and the material its surface takes as the appearance numbers
+    /// them (the object's own, or a CSG member's): one look at the primitive for both.
     #[inline]
-    pub fn material_slot(&self, hit: &Hit) -> u32 {
+    pub fn object_and_material(&self, hit: &Hit) -> (u32, u32) {
         let primitive = &self.primitives[hit.primitive as usize];
-        match &primitive.surface {
-            Surface::Csg(csg) => csg.material_slot(&hit.shape),
-            _ => primitive.material,
-        }
+        let material = match primitive.material {
+            CSG_MEMBERS_MATERIAL => match &primitive.surface {
+                Surface::Csg(csg) => csg.material_slot(&hit.shape),
+                _ => unreachable!("only a combination's members name their materials"),
+            },
+            own => own,
+        };
+        (primitive.object, material)
     }
 
     /// The object `hit` is on.

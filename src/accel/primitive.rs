@@ -16,10 +16,13 @@ pub struct Primitive {
     /// Index of the object it belongs to, into the scene's objects.
     pub object: u32,
     /// The material its surface takes, as the appearance numbers them: the object's own
-    /// (`object`), or a CSG member's (a union's members are primitives of one object). A
-    /// combination's members name theirs themselves (`Csg::material_slot`).
+    /// (`object`), or a CSG member's (a union's members are primitives of one object); for
+    /// a combination, `CSG_MEMBERS_MATERIAL`: its members name theirs (`Csg::material_slot`).
     pub material: u32,
 }
+
+/// A combination's `Primitive::material`: each hit's member names its own.
+pub const CSG_MEMBERS_MATERIAL: u32 = u32::MAX;
 
 /// What a primitive is (a closed set).
 #[derive(Clone, Debug)]

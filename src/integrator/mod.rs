@@ -110,6 +110,9 @@ struct Shading<'s> {
     /// The object hit.
     object: u32,
     material: &'s Material,
+    /// The object's own material, whose inside is the medium (a CSG member's surface may
+    /// have another).
+    medium: &'s Material,
     surface: SurfacePoint,
     /// Whether the ray arrives from the side the surface normal faces.
     entering: bool,
@@ -296,9 +299,9 @@ impl<'a> Integrator<'a> {
     fn shade(&mut self, q: &RayQuery, hit: &Hit, leaves: Option<u32>, path: Path) -> Vec3A {
         self.signature
             .surface(hit.primitive, hit.shape.detail.part());
-        let object = self.accel().object(hit);
-        // A CSG member's own, or the object's.
-        let material = self.appearance.material(self.accel().material_slot(hit));
+        // The material is a CSG member's own, or the object's.
+        let (object, slot) = self.accel().object_and_material(hit);
+        let material = self.appearance.material(slot);
         let mut surface = self.accel().surface(q, hit);
         if let Some(relief) = &material.relief {
             surface.shading = self.relief_normal(relief, q, hit, object, &surface);
@@ -315,6 +318,11 @@ impl<'a> Integrator<'a> {
             hit,
             object,
             material,
+            medium: if slot == object {
+                material
+            } else {
+                self.appearance.material(object)
+            },
             n,
             ns,
             surface,
@@ -376,7 +384,7 @@ impl<'a> Integrator<'a> {
         };
         // The medium inside is the object's (a CSG solid's whole, whatever member's surface
         // is crossed).
-        let own = self.appearance.material(at.object).eta.unwrap_or(1.0);
+        let own = at.medium.eta.unwrap_or(1.0);
         if at.entering {
             eta_of(self.media.current()) / own
         } else {

@@ -8,7 +8,9 @@ use glam::Vec3A;
 
 impl Integrator<'_> {
     /// The shading normal of `surface` (the point of `hit` along `q`, on `object`) tilted
-    /// by `relief`, on the side the surface's normal faces.
+    /// by `relief`, on the side the surface's normal faces. (Out of line: most materials
+    /// have none, and the shading path stays lean.)
+    #[inline(never)]
     pub(super) fn relief_normal(
         &self,
         relief: &Relief,

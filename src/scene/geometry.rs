@@ -4,8 +4,8 @@
 
 use super::description::{ObjectPlacement, Scene, ShapeDesc};
 use crate::accel::{
-    AccelOptions, Accelerator, Csg, CsgLeaf, CsgNode, CsgOperation, Instance, Model, Primitive,
-    Surface,
+    AccelOptions, Accelerator, CSG_MEMBERS_MATERIAL, Csg, CsgLeaf, CsgNode, CsgOperation, Instance,
+    Model, Primitive, Surface,
 };
 use crate::geometry::{Disc, Mesh, Shape, Triangle, UvFrame, picture_axes};
 use crate::limits;
@@ -171,10 +171,8 @@ fn csg_member_surface(
             let root = csg_node(desc, reach, &mut leaves);
             slots.extend(materials.take(leaves.len()));
             // A combination's hits name their members' materials themselves.
-            (
-                Surface::Csg(Arc::new(Csg::new(root, leaves, slots))),
-                u32::MAX,
-            )
+            let csg = Csg::new(root, leaves, slots);
+            (Surface::Csg(Arc::new(csg)), CSG_MEMBERS_MATERIAL)
         }
     }
 }
