@@ -65,7 +65,7 @@ impl Surface {
     }
 
     /// How many times the segment (0, t_max) crosses its surface.
-    #[inline]
+    #[inline(always)]
     pub fn crossings(&self, q: &RayQuery, t_max: f32) -> u32 {
         match self {
             Surface::Shape(shape) => shape.crossings(q, t_max),
@@ -75,7 +75,7 @@ impl Surface {
     }
 
     /// The surface point of `hit`, found along `q`, in the scene's space.
-    #[inline]
+    #[inline(always)]
     pub fn surface(&self, q: &RayQuery, hit: &ShapeHit) -> SurfacePoint {
         match self {
             Surface::Shape(shape) => shape.surface(q, hit),
