@@ -7,12 +7,8 @@ mod common;
 
 use common::povray::{povray_available, povray_render, prism_render};
 use glam::{DVec3, Vec3};
-use prism::accel::Reach;
-use prism::geometry::Ray;
-use prism::integrator::Integrator;
 use prism::render::RenderSettings;
-use prism::sampler::SampleStream;
-use prism::scene::{PreparedScene, Scene};
+use prism::scene::Scene;
 use prism::scene_file::parse_scene;
 use std::path::Path;
 
@@ -243,15 +239,7 @@ fn load(text: &str) -> Scene {
 /// The colour seen along -z through (x, y) from z = 5 (ambient light only, so a hit shows
 /// its flat colour and a miss black).
 fn seen(scene: &Scene, x: f32, y: f32) -> Vec3 {
-    let prepared = PreparedScene::new(scene);
-    let origin = Vec3::new(x, y, 5.0) - scene.origin.as_vec3();
-    Integrator::new(&prepared, 0.0)
-        .trace_primary(
-            Reach::After(0.0),
-            || Ray::new(origin, -Vec3::Z),
-            SampleStream::new(0, 0, 0),
-        )
-        .color
+    common::colour_along(scene, Vec3::new(x, y, 5.0), -Vec3::Z)
 }
 
 /// Two unit spheres 1.2 apart on x, combined each way, seen along z at points in either
@@ -289,15 +277,7 @@ fn each_operation_keeps_what_it_should() {
 
 /// The colour seen from `from` towards `to` (scene coordinates).
 fn seen_from(scene: &Scene, from: Vec3, to: Vec3) -> Vec3 {
-    let prepared = PreparedScene::new(scene);
-    let origin = from - scene.origin.as_vec3();
-    Integrator::new(&prepared, 0.0)
-        .trace_primary(
-            Reach::After(0.0),
-            || Ray::new(origin, (to - from).normalize()),
-            SampleStream::new(0, 0, 0),
-        )
-        .color
+    common::colour_along(scene, from, to - from)
 }
 
 /// A box with a tunnel bored through it (a difference) between a light and a wall: the

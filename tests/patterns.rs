@@ -105,21 +105,8 @@ fn the_example_patterns_are_the_same_on_any_number_of_threads() {
 /// The colour a ray from `from` (world coordinates) along `dir` brings back in the scene of
 /// `text`.
 fn colour_along(text: &str, from: glam::Vec3, dir: glam::Vec3) -> glam::Vec3 {
-    use prism::accel::Reach;
-    use prism::geometry::Ray;
-    use prism::integrator::Integrator;
-    use prism::sampler::SampleStream;
-    use prism::scene::PreparedScene;
     let scene = parse_scene(text, Path::new("m.toml"), Path::new(".")).unwrap();
-    let prepared = PreparedScene::new(&scene);
-    let origin = from - scene.origin.as_vec3();
-    Integrator::new(&prepared, 0.0)
-        .trace_primary(
-            Reach::After(0.0),
-            || Ray::new(origin, dir.normalize()),
-            SampleStream::new(0, 0, 0),
-        )
-        .color
+    common::colour_along(&scene, from, dir)
 }
 
 /// A pattern is fixed to its object: a ball moved sideways, seen at the same point of its

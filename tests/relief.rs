@@ -7,12 +7,8 @@
 mod common;
 
 use glam::Vec3;
-use prism::accel::Reach;
-use prism::geometry::Ray;
-use prism::integrator::Integrator;
 use prism::render::RenderSettings;
-use prism::sampler::SampleStream;
-use prism::scene::{PreparedScene, Scene};
+use prism::scene::Scene;
 use prism::scene_file::parse_scene;
 use std::path::Path;
 
@@ -22,15 +18,7 @@ fn load_in(text: &str, dir: &Path) -> Scene {
 
 /// The colour seen straight down at (x, z) from above the floor y = 0.
 fn seen_from_above(scene: &Scene, x: f32, z: f32) -> Vec3 {
-    let prepared = PreparedScene::new(scene);
-    let origin = Vec3::new(x, 3.0, z) - scene.origin.as_vec3();
-    Integrator::new(&prepared, 0.0)
-        .trace_primary(
-            Reach::After(0.0),
-            || Ray::new(origin, -Vec3::Y),
-            SampleStream::new(0, 0, 0),
-        )
-        .color
+    common::colour_along(scene, Vec3::new(x, 3.0, z), -Vec3::Y)
 }
 
 /// A white floor, lit only by a directional light shining along `light`, with `material`

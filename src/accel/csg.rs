@@ -117,19 +117,29 @@ pub enum CsgNode {
         operation: CsgOperation,
         /// The members, each a subtree.
         members: Vec<CsgNode>,
+        /// The leaves under it, as they are numbered in the tree's order (kept, so that a
+        /// hit finds its member without walking the tree).
+        leaves: std::ops::Range<u32>,
     },
 }
 
 impl CsgNode {
-    /// The leaves under it: a range, as they are numbered in the tree's order.
+    /// Members combined by `operation`, their leaves numbered in the tree's order.
+    pub fn combine(operation: CsgOperation, members: Vec<CsgNode>) -> CsgNode {
+        let first = members.first().map_or(0, |m| m.leaves().start);
+        let last = members.last().map_or(0, |m| m.leaves().end);
+        CsgNode::Combine {
+            operation,
+            members,
+            leaves: first..last,
+        }
+    }
+
+    /// The leaves under it.
     fn leaves(&self) -> std::ops::Range<u32> {
         match self {
             CsgNode::Leaf(i) => *i..*i + 1,
-            CsgNode::Combine { members, .. } => {
-                let first = members.first().map_or(0, |m| m.leaves().start);
-                let last = members.last().map_or(0, |m| m.leaves().end);
-                first..last
-            }
+            CsgNode::Combine { leaves, .. } => leaves.clone(),
         }
     }
 }
@@ -189,7 +199,9 @@ impl Csg {
     fn contains(&self, node: &CsgNode, p: Vec3A) -> bool {
         match node {
             CsgNode::Leaf(i) => self.leaves[*i as usize].contains(p),
-            CsgNode::Combine { operation, members } => match operation {
+            CsgNode::Combine {
+                operation, members, ..
+            } => match operation {
                 CsgOperation::Union | CsgOperation::Merge => {
                     members.iter().any(|m| self.contains(m, p))
                 }
@@ -211,7 +223,10 @@ impl Csg {
     }
 
     fn on_surface_below(&self, node: &CsgNode, leaf: u32, p: Vec3A, root: bool) -> bool {
-        let CsgNode::Combine { operation, members } = node else {
+        let CsgNode::Combine {
+            operation, members, ..
+        } = node
+        else {
             return true;
         };
         let Some(own) = members.iter().position(|m| m.leaves().contains(&leaf)) else {
@@ -309,23 +324,19 @@ impl Csg {
     /// solid where the member is subtracted.
     pub fn surface(&self, q: &RayQuery, hit: &ShapeHit) -> SurfacePoint {
         let (leaf, own) = self.leaf_hit(hit);
-        let mut surface = match &self.leaves[leaf] {
+        let surface = match &self.leaves[leaf] {
             CsgLeaf::Shape(shape) => shape.surface(q, &own),
             CsgLeaf::Instance(instance) => instance.surface(q, &own),
             CsgLeaf::HalfSpace(disc) => Shape::Disc(*disc).surface(q, &own),
         };
-        if self.turned[leaf] {
-            surface.normal = -surface.normal;
-            surface.shading = -surface.shading;
-        }
-        surface
+        self.turned_for(leaf, &surface)
     }
 
     /// The texture coordinates of `hit`, its member's.
     pub fn uv(&self, q: &RayQuery, surface: &SurfacePoint, hit: &ShapeHit) -> (f32, f32) {
         let (leaf, own) = self.leaf_hit(hit);
         match &self.leaves[leaf] {
-            CsgLeaf::Shape(shape) => shape.uv(&self.unturned(leaf, surface), &own),
+            CsgLeaf::Shape(shape) => shape.uv(&self.turned_for(leaf, surface), &own),
             CsgLeaf::Instance(instance) => instance.uv(q, &own),
             CsgLeaf::HalfSpace(disc) => Shape::Disc(*disc).uv(surface, &own),
         }
@@ -335,14 +346,15 @@ impl Csg {
     pub fn uv_frame(&self, q: &RayQuery, surface: &SurfacePoint, hit: &ShapeHit) -> UvFrame {
         let (leaf, own) = self.leaf_hit(hit);
         match &self.leaves[leaf] {
-            CsgLeaf::Shape(shape) => shape.uv_frame(&self.unturned(leaf, surface), &own),
+            CsgLeaf::Shape(shape) => shape.uv_frame(&self.turned_for(leaf, surface), &own),
             CsgLeaf::Instance(instance) => instance.uv_frame(q, &own),
             CsgLeaf::HalfSpace(disc) => Shape::Disc(*disc).uv_frame(surface, &own),
         }
     }
 
-    /// `surface` with its member's own normal (a sphere's map reads it).
-    fn unturned(&self, leaf: usize, surface: &SurfacePoint) -> SurfacePoint {
+    /// `surface` with its normals turned where leaf `leaf`'s are: from the member's own to
+    /// the solid's, and back (a sphere's map reads its own).
+    fn turned_for(&self, leaf: usize, surface: &SurfacePoint) -> SurfacePoint {
         let mut own = *surface;
         if self.turned[leaf] {
             own.normal = -own.normal;
@@ -357,7 +369,9 @@ impl Csg {
 fn mark_turned(node: &CsgNode, turned: bool, out: &mut [bool]) {
     match node {
         CsgNode::Leaf(i) => out[*i as usize] = turned,
-        CsgNode::Combine { operation, members } => {
+        CsgNode::Combine {
+            operation, members, ..
+        } => {
             for (k, m) in members.iter().enumerate() {
                 let subtracted = *operation == CsgOperation::Difference && k > 0;
                 mark_turned(m, turned != subtracted, out);
@@ -371,7 +385,9 @@ fn mark_turned(node: &CsgNode, turned: bool, out: &mut [bool]) {
 fn node_bounds(node: &CsgNode, leaves: &[CsgLeaf]) -> Aabb {
     match node {
         CsgNode::Leaf(i) => leaves[*i as usize].bounds(),
-        CsgNode::Combine { operation, members } => {
+        CsgNode::Combine {
+            operation, members, ..
+        } => {
             let mut boxes = members.iter().map(|m| node_bounds(m, leaves));
             match operation {
                 CsgOperation::Union | CsgOperation::Merge => {

@@ -31,9 +31,6 @@ pub enum Relief {
 }
 
 impl Relief {
-    /// The names of the material fields that give each kind of relief, in the order above.
-    pub const FIELDS: [&'static str; 2] = ["bump", "normal_map"];
-
     /// Whether it reads the surface's texture coordinates (its tangents, `UvFrame`).
     pub fn needs_uv(&self) -> bool {
         match self {

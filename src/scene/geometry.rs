@@ -198,13 +198,13 @@ fn csg_leaf(desc: &ShapeDesc, reach: f32) -> Option<CsgLeaf> {
 /// The tree of CSG member `desc`, its leaves appended to `leaves` in the tree's order.
 fn csg_node(desc: &ShapeDesc, reach: f32, leaves: &mut Vec<CsgLeaf>) -> CsgNode {
     match desc {
-        ShapeDesc::Csg { operation, members } => CsgNode::Combine {
-            operation: *operation,
-            members: members
+        ShapeDesc::Csg { operation, members } => CsgNode::combine(
+            *operation,
+            members
                 .iter()
                 .map(|m| csg_node(&m.shape, reach, leaves))
                 .collect(),
-        },
+        ),
         leaf => {
             leaves.push(csg_leaf(leaf, reach).expect("a leaf"));
             CsgNode::Leaf(leaves.len() as u32 - 1)

@@ -75,6 +75,20 @@ pub fn render_scene(scene: &Scene, settings: RenderSettings) -> image::RgbImage 
     render_prepared(Arc::new(PreparedScene::new(scene)), scene.camera, settings)
 }
 
+/// The colour one primary ray from `from` (world coordinates) along `dir` brings back in
+/// `scene` (subsample 0 of pixel 0).
+pub fn colour_along(scene: &Scene, from: glam::Vec3, dir: glam::Vec3) -> glam::Vec3 {
+    let prepared = PreparedScene::new(scene);
+    let origin = from - scene.origin.as_vec3();
+    prism::integrator::Integrator::new(&prepared, 0.0)
+        .trace_primary(
+            prism::accel::Reach::After(0.0),
+            || prism::geometry::Ray::new(origin, dir.normalize()),
+            prism::sampler::SampleStream::new(0, 0, 0),
+        )
+        .color
+}
+
 /// A temporary folder, removed with everything in it when dropped.
 pub struct Dir(pub tempfile::TempDir);
 
