@@ -155,6 +155,9 @@ pub const MAX_CSG_MEMBERS: usize = 256;
 /// How deep CSG combinations may nest.
 pub const MAX_CSG_DEPTH: usize = 32;
 
+/// How deep groups may nest (a group in a group in a group …).
+pub const MAX_GROUP_DEPTH: usize = 32;
+
 /// How far a bump map's white stands above its black, in scene units (0: flat).
 pub const BUMP_DEPTH: RangeInclusive<f32> = 0.0..=(MAX_COORDINATE as f32);
 

@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::povray::{povray_available, povray_render, prism_render};
+use common::povray::{compare, povray_available, povray_render, prism_render};
 use glam::{DVec3, Vec3};
 use prism::render::RenderSettings;
 use prism::scene::Scene;
@@ -115,18 +115,6 @@ fn povray_scene(head: &str, finish: &str) -> String {
         s += "\n";
     }
     s
-}
-
-/// How many pixels differ by more than `by` levels on some channel, and the mean difference.
-fn compare(a: &image::RgbImage, b: &image::RgbImage, by: u8) -> (usize, f64) {
-    let mut far = 0;
-    let mut sum = 0u64;
-    for (p, q) in a.pixels().zip(b.pixels()) {
-        let d = (0..3).map(|c| p[c].abs_diff(q[c])).max().unwrap();
-        far += (d > by) as usize;
-        sum += d as u64;
-    }
-    (far, sum as f64 / (a.width() * a.height()) as f64)
 }
 
 /// Flat colours (ambient light alone): what is hit where decides each pixel, and the

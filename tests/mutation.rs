@@ -11,7 +11,7 @@ use proptest::prelude::*;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, OnceLock};
 
-const SEEDS: [&str; 13] = [
+const SEEDS: [&str; 14] = [
     include_str!("../fuzz/corpus/seed.toml"),
     include_str!("../fuzz/corpus/shapes.toml"),
     include_str!("../fuzz/corpus/sphere.toml"),
@@ -25,6 +25,7 @@ const SEEDS: [&str; 13] = [
     include_str!("../fuzz/corpus/touching.toml"),
     include_str!("../fuzz/corpus/smooth-mesh-and-brackets.toml"),
     include_str!("../fuzz/corpus/csg.toml"),
+    include_str!("../fuzz/corpus/groups.toml"),
 ];
 
 /// Values that have broken renderers: overflow when squared or multiplied, underflow,

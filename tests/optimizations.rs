@@ -136,6 +136,7 @@ fn light_buffers_draw_the_image_the_bvh_draws() {
         beads.objects.push(SceneObject {
             casts_shadow: true,
             placement: Default::default(),
+            group: None,
             name: format!("bead {i}"),
             shape: ShapeDesc::Sphere {
                 center: Vec3::new(
@@ -197,6 +198,7 @@ fn rays_inside_isolated_solids_find_what_the_bvh_finds() {
     variant.objects.push(SceneObject {
         casts_shadow: true,
         placement: Default::default(),
+        group: None,
         name: "bead".into(),
         shape: ShapeDesc::Sphere {
             center: Vec3::new(-9.0, -10.5, -60.0),

@@ -486,6 +486,7 @@ mod tests {
         let sphere = |center: Vec3| SceneObject {
             casts_shadow: true,
             placement: Default::default(),
+            group: None,
             name: "s".into(),
             shape: ShapeDesc::Sphere {
                 center,

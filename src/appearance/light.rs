@@ -454,6 +454,28 @@ impl Light {
         moved
     }
 
+    /// `placed`'s place, direction and size (this light placed anew, by its group) with this
+    /// light's colour, falloff, cone angle and softness, and visibility: what an edit may
+    /// have changed of it stays.
+    pub fn placed_as(&self, placed: &Light) -> Light {
+        let mut out = *placed;
+        out.color = self.color;
+        let mut was = *self;
+        if let (Some(to), Some(from)) = (out.falloff_mut(), was.falloff_mut()) {
+            *to = *from;
+        }
+        match (&mut out.kind, self.kind) {
+            (LightKind::Spot { cone, .. }, LightKind::Spot { cone: was, .. }) => {
+                *cone = SpotCone::new(cone.direction, was.angle, was.softness);
+            }
+            (LightKind::Area { visible, .. }, LightKind::Area { visible: was, .. }) => {
+                *visible = was;
+            }
+            _ => {}
+        }
+        out
+    }
+
     /// How the light fades with distance; None for a directional light, which does not.
     pub fn falloff_mut(&mut self) -> Option<&mut Falloff> {
         match &mut self.kind {

@@ -29,6 +29,7 @@ pub fn sphere_field(n: usize) -> Scene {
             SceneObject {
                 casts_shadow: true,
                 placement: Default::default(),
+                group: None,
                 name: format!("sphere {i}"),
                 shape: ShapeDesc::Sphere {
                     center,
@@ -46,6 +47,7 @@ pub fn sphere_field(n: usize) -> Scene {
     objects.push(SceneObject {
         casts_shadow: true,
         placement: Default::default(),
+        group: None,
         name: "floor".into(),
         shape: ShapeDesc::Polygon {
             vertices: vec![
@@ -74,5 +76,6 @@ pub fn sphere_field(n: usize) -> Scene {
         )],
         fog: None,
         objects,
+        groups: Vec::new(),
     }
 }

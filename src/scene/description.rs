@@ -1,6 +1,8 @@
 //! A validated scene: what is where, made of what. Every value here has passed the checks
 //! of the scene file loader, so preparing a `Scene` cannot fail.
 
+use super::group::{SceneGroup, group_frame};
+use super::placement::ObjectPlacement;
 use crate::accel::CsgOperation;
 use crate::appearance::Material;
 use crate::appearance::{Background, Fog, Light};
@@ -8,7 +10,7 @@ use crate::camera::Camera;
 use crate::geometry::{
     Aabb, Capsule, Cone, Cuboid, Cylinder, Disc, Mesh, Shape, Sphere, Torus, Transform,
 };
-use glam::{Affine3A, DVec3, Quat, Vec3};
+use glam::{Affine3A, DAffine3, DMat3, DVec3, Quat, Vec3};
 use std::sync::Arc;
 
 /// Every position in a `Scene` (camera, lights, shapes) is relative to `origin`, which is
@@ -33,6 +35,8 @@ pub struct Scene {
     pub fog: Option<Fog>,
     /// The objects, in the file's order.
     pub objects: Vec<SceneObject>,
+    /// The groups objects and lights are placed in, each after its parent.
+    pub groups: Vec<SceneGroup>,
 }
 
 /// Image settings a scene file may suggest; the command line overrides them.
@@ -79,36 +83,10 @@ pub struct SceneObject {
     /// does not shadow its own light). Its own surface is shaded either way.
     pub casts_shadow: bool,
     /// How its entry in the scene file places it (`shape` is already placed): what an
-    /// editor shows and changes, and what a save writes back.
+    /// editor shows and changes, and what a save writes back. In its group's frame.
     pub placement: ObjectPlacement,
-}
-
-/// An entry's `translate`, `rotate` and `scale` as the scene file writes them: scale, then
-/// turn about x, then y, then z (degrees, right-handed, as POV-Ray's `rotate`), then move,
-/// all about the world's origin. Identity where the entry gives none.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ObjectPlacement {
-    /// The move, in world units.
-    pub translate: DVec3,
-    /// The turns about x, y and z, in degrees (f32, as the file reads them).
-    pub rotate: Vec3,
-    /// The factor along each axis.
-    pub scale: DVec3,
-}
-
-impl ObjectPlacement {
-    /// No scale, turn or move.
-    pub const IDENTITY: ObjectPlacement = ObjectPlacement {
-        translate: DVec3::ZERO,
-        rotate: Vec3::ZERO,
-        scale: DVec3::ONE,
-    };
-}
-
-impl Default for ObjectPlacement {
-    fn default() -> Self {
-        Self::IDENTITY
-    }
+    /// The group it is placed in (an index into `Scene::groups`); None for the world.
+    pub group: Option<usize>,
 }
 
 /// Every kind of shape a scene file describes (a closed set).
@@ -582,5 +560,46 @@ impl Scene {
             // `placement` stays the file's: this scene is a test's variant, never saved.
         }
         scene
+    }
+}
+
+impl Scene {
+    /// The map from group `group`'s frame to the world's (`group::group_frame`).
+    pub fn group_frame(&self, group: Option<usize>) -> DAffine3 {
+        group_frame(&self.groups, group)
+    }
+
+    /// The scale and turn that object `object`'s placement and its groups' give it
+    /// together: what its solid textures turn and scale with.
+    pub fn object_linear(&self, object: usize) -> DMat3 {
+        let o = &self.objects[object];
+        self.group_frame(o.group).matrix3 * o.placement.linear()
+    }
+
+    /// Whether group `group` is `ancestor` or lies within it.
+    pub fn group_within(&self, group: usize, ancestor: usize) -> bool {
+        let mut at = Some(group);
+        for _ in 0..=self.groups.len() {
+            match at {
+                Some(g) if g == ancestor => return true,
+                Some(g) => at = self.groups.get(g).and_then(|g| g.parent),
+                None => return false,
+            }
+        }
+        false
+    }
+
+    /// The groups from `group` out to the world: it, its parent, and so on.
+    pub fn group_chain(&self, group: Option<usize>) -> Vec<usize> {
+        let mut chain = Vec::new();
+        let mut at = group;
+        while let Some(g) = at {
+            if chain.contains(&g) || g >= self.groups.len() {
+                break;
+            }
+            chain.push(g);
+            at = self.groups[g].parent;
+        }
+        chain
     }
 }

@@ -17,6 +17,9 @@ pub enum EditError {
     /// The scene has no object with this index.
     #[error("no object number {0}")]
     NoSuchObject(usize),
+    /// The scene has no group with this index.
+    #[error("no group number {0}")]
+    NoSuchGroup(usize),
     /// A camera that breaks a rule (the message says which).
     #[error("camera: {0}")]
     Camera(String),

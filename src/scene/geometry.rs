@@ -2,14 +2,14 @@
 //! acceleration layer, and what shading needs to know of each object's shape. Built when
 //! geometry changes, and never for an appearance edit.
 
-use super::description::{ObjectPlacement, Scene, ShapeDesc};
+use super::description::{Scene, ShapeDesc};
 use crate::accel::{
     AccelOptions, Accelerator, CSG_MEMBERS_MATERIAL, Csg, CsgLeaf, CsgNode, CsgOperation, Instance,
     Model, Primitive, Surface,
 };
 use crate::geometry::{Disc, Mesh, Shape, Triangle, UvFrame, picture_axes};
 use crate::limits;
-use glam::{DMat3, DVec3, Mat3A, Vec3, Vec3A};
+use glam::{DMat3, Mat3A, Vec3, Vec3A};
 use std::collections::HashMap;
 use std::sync::Arc;
 
@@ -57,19 +57,10 @@ impl ObjectGeometry {
     }
 }
 
-/// The inverse of `placement`'s turn and scale; None when it has neither.
-fn texture_axes(placement: &ObjectPlacement) -> Option<Mat3A> {
-    if placement.rotate == Vec3::ZERO && placement.scale == DVec3::ONE {
-        return None;
-    }
-    let [x, y, z] = placement
-        .rotate
-        .to_array()
-        .map(|d| (d as f64).rem_euclid(360.0).to_radians());
-    let rotation =
-        DMat3::from_rotation_z(z) * DMat3::from_rotation_y(y) * DMat3::from_rotation_x(x);
-    let linear = rotation * DMat3::from_diagonal(placement.scale);
-    Some(Mat3A::from(linear.inverse().as_mat3()))
+/// The inverse of `linear` (an object's turn and scale, its groups' included); None when
+/// it neither turns nor scales.
+fn texture_axes(linear: DMat3) -> Option<Mat3A> {
+    (linear != DMat3::IDENTITY).then(|| Mat3A::from(linear.inverse().as_mat3()))
 }
 
 /// Texture coordinates over a polygon's extent in its own plane.
@@ -221,16 +212,17 @@ pub struct Geometry {
 }
 
 impl Geometry {
-    /// Whether `a` and `b` prepare to the same geometry: the same objects' names and shapes
-    /// and the same lights' shadow-ray end points (the light buffers' centres), everything
-    /// [`Geometry::new`] reads. Then an edit between them need rebuild none of it.
+    /// Whether `a` and `b` prepare to the same geometry: the same groups, the same objects'
+    /// names, shapes and groups, and the same lights' shadow-ray end points (the light
+    /// buffers' centres), everything [`Geometry::new`] reads. Then an edit between them need rebuild none of it.
     pub fn same_for(a: &Scene, b: &Scene) -> bool {
         a.origin == b.origin
+            && a.groups == b.groups
             && a.objects.len() == b.objects.len()
             && a.objects
                 .iter()
                 .zip(&b.objects)
-                .all(|(x, y)| x.name == y.name && x.shape == y.shape)
+                .all(|(x, y)| x.name == y.name && x.shape == y.shape && x.group == y.group)
             && a.lights.len() == b.lights.len()
             && a.lights
                 .iter()
@@ -359,7 +351,7 @@ impl Geometry {
             objects.push(ObjectGeometry {
                 name: object.name.clone(),
                 origin: object.shape.origin().into(),
-                texture_axes: texture_axes(&object.placement),
+                texture_axes: texture_axes(scene.object_linear(index)),
                 planar_uv,
                 flat: object.shape.is_flat(),
                 convex: object.shape.is_convex(),

@@ -10,9 +10,13 @@
 mod description;
 mod edit;
 mod geometry;
+mod group;
+mod placement;
 mod prepared;
 
-pub use description::{CsgMember, ObjectPlacement, RenderDefaults, Scene, SceneObject, ShapeDesc};
+pub use description::{CsgMember, RenderDefaults, Scene, SceneObject, ShapeDesc};
 pub use edit::{EditError, check_camera};
 pub use geometry::{Geometry, ObjectGeometry, PlanarUv};
+pub use group::{SceneGroup, group_frame};
+pub use placement::ObjectPlacement;
 pub use prepared::{CoincidentSurfaces, PreparedScene};

@@ -33,6 +33,11 @@ macro_rules! table_names {
 /// order (kinds.rs).
 pub const OBJECT_TABLES: &[&str] = &object_kinds!(table_names);
 
+/// The tables whose entries a track may name by their `name`: the objects' and `groups`.
+fn named_tables() -> impl Iterator<Item = &'static str> {
+    OBJECT_TABLES.iter().copied().chain(["groups"])
+}
+
 /// How a track moves between its keys.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Interpolation {
@@ -57,7 +62,7 @@ pub struct Key {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Track {
     /// The table: `camera`, `render`, `fog`, `lights[i]`, `materials.NAME`, an object's
-    /// name or `TABLE[i]` (`spheres[2]`).
+    /// or a group's name, or `TABLE[i]` (`spheres[2]`, `groups[0]`).
     pub target: String,
     /// The field of that table.
     pub field: String,
@@ -468,10 +473,10 @@ fn target_table<'d>(
         let index: usize = index
             .parse()
             .map_err(|_| missing("the index in [..] is not a whole number".into()))?;
-        if table != "lights" && !OBJECT_TABLES.contains(&table) {
+        if table != "lights" && !named_tables().any(|t| t == table) {
             return Err(missing(format!(
-                "an indexed target is lights[i] or an object table's entry, such as \
-                 spheres[0]; there is no table {}",
+                "an indexed target is lights[i], groups[i] or an object table's entry, such \
+                 as spheres[0]; there is no table {}",
                 crate::messages::quoted(table)
             )));
         }
@@ -487,14 +492,14 @@ fn target_table<'d>(
             .and_then(Item::as_table_like_mut)
             .ok_or_else(|| missing(format!("the file has no [{target}] table")));
     }
-    // An object's name: the one entry of an object table with `name = target`.
+    // An object's or a group's name: the one entry with `name = target`.
     let mut found = None;
-    for table in OBJECT_TABLES {
+    for table in named_tables() {
         for (i, entry) in entries(root.get(table)).into_iter().enumerate() {
             if entry.get("name").and_then(Item::as_str) == Some(target) {
                 if let Some((other, j)) = found {
                     return Err(missing(format!(
-                        "two objects have this name ({other}[{j}] and {table}[{i}]); name \
+                        "two entries have this name ({other}[{j}] and {table}[{i}]); name \
                          one by its table and index"
                     )));
                 }
@@ -503,15 +508,15 @@ fn target_table<'d>(
         }
     }
     let Some((table, i)) = found else {
-        let names: Vec<String> = OBJECT_TABLES
-            .iter()
+        let names: Vec<String> = named_tables()
             .flat_map(|table| entries(root.get(table)))
             .filter_map(|entry| entry.get("name").and_then(Item::as_str).map(str::to_string))
             .collect();
         let hint = crate::messages::did_you_mean(target, names.iter().map(String::as_str));
         return Err(missing(format!(
-            "no such table or object: a target is camera, render, fog, lights[i], \
-             materials.NAME, an object's name or its table and index (spheres[0]){hint}"
+            "no such table, object or group: a target is camera, render, fog, lights[i], \
+             materials.NAME, an object's or a group's name, or its table and index \
+             (spheres[0], groups[1]){hint}"
         )));
     };
     Ok(entry_mut(root.get_mut(table), i).expect("it was just found"))
@@ -520,7 +525,7 @@ fn target_table<'d>(
 /// `target` in a form that does not depend on any value a track may change: an object's
 /// name becomes its table and index (a track may key another track's target's `name`).
 fn canonical(document: &DocumentMut, target: &str) -> String {
-    for table in OBJECT_TABLES {
+    for table in named_tables() {
         for (i, entry) in entries(document.as_table().get(table))
             .into_iter()
             .enumerate()

@@ -1,11 +1,12 @@
-//! The whole file: its tables read in order (camera, render, textures, materials, lights,
-//! objects), each by its subject's reader, into one `Scene`, and the images it names
+//! The whole file: its tables read in order (camera, render, groups, lights, textures,
+//! materials, objects), each by its subject's reader, into one `Scene`, and the images it names
 //! counted against one texel budget before any is decoded.
 
 use super::camera::CameraDef;
 use super::entry_def::EntryDef;
 use super::entry_def::entry_label;
 use super::error::SceneError;
+use super::groups::GroupDef;
 use super::kinds::object_kinds;
 use super::lights::LightDef;
 use super::materials::MaterialDef;
@@ -46,6 +47,8 @@ macro_rules! scene_file {
             pub(super) render: Option<Spanned<RenderDef>>,
             pub(super) fog: Option<Spanned<FogDef>>,
             #[serde(default)]
+            pub(super) groups: Vec<Spanned<GroupDef>>,
+            #[serde(default)]
             pub(super) lights: Vec<Spanned<LightDef>>,
             #[serde(default)]
             pub(super) textures: BTreeMap<String, Spanned<TextureDef>>,
@@ -67,19 +70,22 @@ impl Validator<'_> {
     pub(super) fn scene(&self, file: SceneFile) -> Result<(Scene, Vec<ObjectOrigin>), SceneError> {
         let camera = self.camera(&file.camera)?;
         let (render, ambient) = self.render(file.render.as_ref())?;
-        let lights = file
-            .lights
-            .iter()
-            .enumerate()
-            .map(|(i, l)| {
-                let name = format!("lights[{i}]");
-                let at = Item {
-                    span: l.span(),
-                    name: &name,
-                };
-                self.light(&at, l.get_ref())
-            })
-            .collect::<Result<Vec<_>, SceneError>>()?;
+        // Lights and objects name the groups they are placed in.
+        let mut groups = self.groups(&file.groups)?;
+        let _ = self.groups.set(groups.clone());
+        let mut lights = Vec::with_capacity(file.lights.len());
+        for (i, l) in file.lights.iter().enumerate() {
+            let name = format!("lights[{i}]");
+            let at = Item {
+                span: l.span(),
+                name: &name,
+            };
+            let (light, group) = self.light(&at, l.get_ref())?;
+            if let Some(g) = group {
+                groups[g].lights.push(i);
+            }
+            lights.push(light);
+        }
         let fog = self.fog(file.fog.as_ref())?;
         let mut images = Images::default();
         self.check_texel_budget(&file.textures, file.render.as_ref(), &mut images)?;
@@ -131,6 +137,7 @@ impl Validator<'_> {
                 material,
                 casts_shadow: d.shadow().unwrap_or(true),
                 placement: placement.written(),
+                group: placement.group(),
             });
             origins.push(ObjectOrigin {
                 table: kind,
@@ -197,6 +204,7 @@ impl Validator<'_> {
                     material: part.material,
                     casts_shadow: d.shadow.unwrap_or(true),
                     placement: placement.written(),
+                    group: placement.group(),
                 });
                 origins.push(ObjectOrigin {
                     table: "meshes",
@@ -214,6 +222,7 @@ impl Validator<'_> {
             lights,
             fog,
             objects,
+            groups,
         };
         Ok((scene, origins))
     }

@@ -31,6 +31,8 @@ pub(super) struct CsgDef<M = Spanned<toml::Table>> {
     members: Vec<M>,
     pub(super) material: Option<String>,
     pub(super) shadow: Option<bool>,
+    /// The group it is placed in.
+    pub(super) group: Option<String>,
     pub(super) translate: Option<P3>,
     pub(super) rotate: Option<V3>,
     /// A number or [sx, sy, sz].
@@ -202,6 +204,10 @@ impl Validator<'_> {
         for (field, why) in [
             ("name", "a member has no name of its own: name the whole"),
             ("shadow", "the whole casts a shadow or does not"),
+            (
+                "group",
+                "a member is placed in the whole's frame: give the whole a group",
+            ),
         ] {
             if table.contains_key(field) {
                 return Err(self.field_error(at, field, format!("`{field}` in a member: {why}")));
@@ -313,7 +319,7 @@ fn outer_transform(
     at: &Item,
     placement: &Placement,
 ) -> Result<Option<Transform>, SceneError> {
-    if placement.written() == crate::scene::ObjectPlacement::IDENTITY {
+    if placement.is_identity() {
         return Ok(None);
     }
     match placement.relative(v.origin) {

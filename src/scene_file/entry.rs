@@ -3,15 +3,16 @@
 //! another placement, as a load of the file with those values would validate it (the
 //! viewer's transform edits).
 
+use super::assemble::SceneFile;
 use super::assets::Assets;
-use super::entry_def::{EntryDef, entry_label};
+use super::entry_def::{EntryDef, entry_label, placement_fields};
 use super::error::SceneError;
-use super::fixed_array::Fixed;
 use super::kinds::object_kinds;
 use super::load::{LoadedScene, read_tables};
 use super::parse_tree::{Tree, parse_tree};
 use super::spans::FieldSpans;
 use super::validator::{Item, P3, V3, Validator};
+use crate::appearance::Light;
 use crate::scene::{EditError, ObjectPlacement, Scene, ShapeDesc};
 use std::path::{Path, PathBuf};
 
@@ -28,15 +29,14 @@ macro_rules! entry_defs {
             fn shadow(&self) -> Option<bool> {
                 self.shadow
             }
+            fn group(&self) -> Option<&str> {
+                self.group.as_deref()
+            }
             fn placement(&self) -> (Option<P3>, Option<V3>, Option<&toml::Value>) {
                 (self.translate, self.rotate, self.scale.as_ref())
             }
             fn set_placement(&mut self, p: &ObjectPlacement) {
-                self.translate = Some(Fixed(p.translate.to_array()));
-                self.rotate = Some(Fixed(p.rotate.to_array()));
-                self.scale = Some(toml::Value::Array(
-                    p.scale.to_array().map(toml::Value::Float).to_vec(),
-                ));
+                (self.translate, self.rotate, self.scale) = placement_fields(p);
             }
         }
     )*};
@@ -55,6 +55,48 @@ pub(crate) struct PlacedEntry {
     pub(crate) placement: ObjectPlacement,
 }
 
+/// Entries placed anew: objects' and lights'.
+#[derive(Default)]
+pub(crate) struct PlacedEntries {
+    /// Each object entry placed anew.
+    pub(crate) objects: Vec<PlacedEntry>,
+    /// Each light placed anew in its group, by its index in the scene.
+    pub(crate) lights: Vec<(usize, Light)>,
+}
+
+impl PlacedEntries {
+    /// Puts the new shapes, placements and lights into `scene`. A light keeps what an edit
+    /// may have changed of it other than where it is (its colour, intensity and cone).
+    pub(crate) fn apply(self, scene: &mut Scene) {
+        for entry in self.objects {
+            for (i, mut shape) in entry.shapes {
+                let o = &mut scene.objects[i];
+                // What its CSG members are made of stays (they name `[materials]` entries,
+                // which placing the entry again does not read).
+                shape.keep_member_materials(&o.shape);
+                o.shape = shape;
+                o.placement = entry.placement;
+            }
+        }
+        for (i, light) in self.lights {
+            let l = &mut scene.lights[i];
+            *l = l.placed_as(&light);
+        }
+    }
+}
+
+/// A placement refused by the file's rules, as an edit's error (`name` for a problem not
+/// in one entry).
+pub(crate) fn edit_error(e: SceneError, name: &str) -> EditError {
+    match e {
+        SceneError::Invalid { item, message, .. } => EditError::Placement { item, message },
+        other => EditError::Placement {
+            item: name.to_string(),
+            message: other.to_string(),
+        },
+    }
+}
+
 impl LoadedScene {
     /// Places `scene`'s object `object` (an edit of this load's scene) by `placement` (its
     /// entry's `translate`, `rotate` and `scale`), as this load would with those values: the
@@ -69,60 +111,46 @@ impl LoadedScene {
             return Err(EditError::NoSuchObject(object));
         }
         let placed = self
-            .placed_entry(scene, object, &placement)
-            .map_err(|e| match e {
-                SceneError::Invalid { item, message, .. } => EditError::Placement { item, message },
-                other => EditError::Placement {
-                    item: scene.objects[object].name.clone(),
-                    message: other.to_string(),
-                },
-            })?
+            .placed_entries(scene, &[(object, placement)], &[])
+            .map_err(|e| edit_error(e, &scene.objects[object].name))?
             .ok_or(EditError::NoSuchObject(object))?;
-        for (i, mut shape) in placed.shapes {
-            let o = &mut scene.objects[i];
-            // What its CSG members are made of stays (they name `[materials]` entries,
-            // which placing the entry again does not read).
-            shape.keep_member_materials(&o.shape);
-            o.shape = shape;
-            o.placement = placed.placement;
-        }
+        placed.apply(scene);
         Ok(())
     }
 
-    /// The shapes object `object`'s entry makes when its `translate`, `rotate` and `scale`
-    /// are `placement`'s: exactly those a load of the file with these values would make,
-    /// checked by the same rules. `scene` is this load's scene, edited or not (a mesh's
-    /// parts keep the meshes it holds; no file is read).
-    pub(crate) fn placed_entry(
+    /// The shapes the entries of `objects` make when their `translate`, `rotate` and
+    /// `scale` are the placements given, and the lights `lights` (indices) placed anew in
+    /// their groups: exactly what a load of the file with these values, and with `scene`'s
+    /// groups' placements, would make, checked by the same rules. `scene` is this load's
+    /// scene, edited or not (a mesh's parts keep the meshes it holds; no file is read).
+    /// None when the file no longer has an entry the scene came from.
+    pub(crate) fn placed_entries(
         &self,
         scene: &Scene,
-        object: usize,
-        placement: &ObjectPlacement,
-    ) -> Result<Option<PlacedEntry>, SceneError> {
+        objects: &[(usize, ObjectPlacement)],
+        lights: &[usize],
+    ) -> Result<Option<PlacedEntries>, SceneError> {
         // The file as this load validated it: an animated file's at its frame.
         match &self.animation {
             Some(animation) => animation.with_frame_tree(self.frame, |tree, source| {
-                self.placed_in(tree, source, scene, object, placement)
+                self.placed_in(tree, source, scene, objects, lights)
             }),
             None => match parse_tree(&self.source, Path::new("")) {
-                Ok(tree) => self.placed_in(&tree, &self.source, scene, object, placement),
+                Ok(tree) => self.placed_in(&tree, &self.source, scene, objects, lights),
                 Err(_) => Ok(None),
             },
         }
     }
 
-    /// `placed_entry` in the file whose parse tree is `tree` and text `source`.
+    /// `placed_entries` in the file whose parse tree is `tree` and text `source`.
     fn placed_in(
         &self,
         tree: &Tree,
         source: &str,
         scene: &Scene,
-        object: usize,
-        placement: &ObjectPlacement,
-    ) -> Result<Option<PlacedEntry>, SceneError> {
-        let Some(origin) = self.origins.get(object) else {
-            return Ok(None);
-        };
+        objects: &[(usize, ObjectPlacement)],
+        lights: &[usize],
+    ) -> Result<Option<PlacedEntries>, SceneError> {
         let Ok(mut file) = read_tables(tree, source, Path::new("")) else {
             return Ok(None);
         };
@@ -134,6 +162,48 @@ impl LoadedScene {
             origin: glam::DVec3::from(file.camera.get_ref().eye),
             reads: Default::default(),
             materials: Default::default(),
+            groups: Default::default(),
+        };
+        // The groups as the scene has them now (an edit's placements in them), checked by
+        // the file's rules.
+        for (def, group) in file.groups.iter_mut().zip(&scene.groups) {
+            def.get_mut().set_placement(&group.placement);
+        }
+        let _ = v.groups.set(v.groups(&file.groups)?);
+        let mut placed = PlacedEntries::default();
+        for &(object, placement) in objects {
+            let Some(entry) = self.placed_object(&mut file, &v, scene, object, &placement)? else {
+                return Ok(None);
+            };
+            placed.objects.push(entry);
+        }
+        for &light in lights {
+            let Some(def) = file.lights.get(light) else {
+                return Ok(None);
+            };
+            let label = format!("lights[{light}]");
+            let at = Item {
+                span: def.span(),
+                name: &label,
+            };
+            let (placed_light, _) = v.light(&at, def.get_ref())?;
+            placed.lights.push((light, placed_light));
+        }
+        Ok(Some(placed))
+    }
+
+    /// Object `object`'s entry of `file` placed by `placement`; None when the file has no
+    /// such entry.
+    fn placed_object(
+        &self,
+        file: &mut SceneFile,
+        v: &Validator,
+        scene: &Scene,
+        object: usize,
+        placement: &ObjectPlacement,
+    ) -> Result<Option<PlacedEntry>, SceneError> {
+        let Some(origin) = self.origins.get(object) else {
+            return Ok(None);
         };
         let (table, index) = (origin.table, origin.index);
         // The entry with the new placement, its span and its label; None if the file has

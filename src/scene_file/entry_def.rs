@@ -2,6 +2,7 @@
 //! whatever its shape: the interface placement and the entry machinery share, below both
 //! (entry.rs implements it for every kind).
 
+use super::fixed_array::Fixed;
 use super::validator::{P3, V3};
 use crate::messages::quoted;
 use crate::scene::ObjectPlacement;
@@ -11,6 +12,8 @@ pub(super) trait EntryDef {
     fn name(&self) -> Option<&str>;
     fn material(&self) -> Option<&str>;
     fn shadow(&self) -> Option<bool>;
+    /// The name of the group it is placed in.
+    fn group(&self) -> Option<&str>;
     /// Its `translate`, `rotate` and `scale`, as read.
     fn placement(&self) -> (Option<P3>, Option<V3>, Option<&toml::Value>);
     /// Gives it `p`'s `translate`, `rotate` and `scale` in place of its own.
@@ -23,4 +26,16 @@ pub(super) fn entry_label(kind: &str, i: usize, name: Option<&str>) -> String {
         Some(n) => format!("{kind}[{i}] {}", quoted(n)),
         None => format!("{kind}[{i}]"),
     }
+}
+
+/// `p` as an entry's `translate`, `rotate` and `scale` fields.
+pub(super) fn placement_fields(
+    p: &ObjectPlacement,
+) -> (Option<P3>, Option<V3>, Option<toml::Value>) {
+    let scale = toml::Value::Array(p.scale.to_array().map(toml::Value::Float).to_vec());
+    (
+        Some(Fixed(p.translate.to_array())),
+        Some(Fixed(p.rotate.to_array())),
+        Some(scale),
+    )
 }

@@ -81,7 +81,7 @@ pub struct SceneFrames {
 }
 
 enum FramesKind {
-    Still(Scene),
+    Still(Box<Scene>),
     Animated {
         path: PathBuf,
         animation: std::sync::Arc<Animation>,
@@ -96,7 +96,7 @@ impl SceneFrames {
         let load = load_scene_file_cached(path, 0, &cache);
         let loaded = load.result?;
         let kind = match loaded.animation {
-            None => FramesKind::Still(loaded.scene),
+            None => FramesKind::Still(Box::new(loaded.scene)),
             Some(animation) => FramesKind::Animated {
                 path: path.to_path_buf(),
                 animation,
@@ -112,7 +112,7 @@ impl SceneFrames {
     /// A still scene.
     pub fn fixed(scene: Scene) -> Self {
         Self {
-            kind: FramesKind::Still(scene),
+            kind: FramesKind::Still(Box::new(scene)),
             files: Vec::new(),
             cache: ReadCache::default(),
         }
@@ -135,7 +135,7 @@ impl SceneFrames {
     /// The scene at `frame` (a still scene is the same at every frame).
     pub fn frame(&self, frame: u32) -> Result<Scene, SceneError> {
         match &self.kind {
-            FramesKind::Still(scene) => Ok(scene.clone()),
+            FramesKind::Still(scene) => Ok(Scene::clone(scene)),
             FramesKind::Animated { path, animation } => {
                 let base = path.parent().unwrap_or(Path::new("."));
                 animation.scene_at(frame, path, Assets::Cached(base, &self.cache))

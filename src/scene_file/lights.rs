@@ -2,9 +2,12 @@
 //! how their light falls off with distance.
 
 use super::error::SceneError;
+use super::fixed_array::Fixed;
+use super::placement::Placement;
 use super::validator::{Item, P3, V3, Validator};
 use crate::appearance::{AreaShape, Falloff, Light, LightKind, SpotCone};
 use crate::messages::{did_you_mean, quoted};
+use crate::scene::ObjectPlacement;
 use glam::Vec3;
 use serde::Deserialize;
 
@@ -25,10 +28,56 @@ pub(super) struct LightDef {
     pub(super) angle: Option<f32>,
     pub(super) softness: Option<f32>,
     pub(super) visible: Option<bool>,
+    /// The group it is placed in.
+    pub(super) group: Option<String>,
 }
 
 impl Validator<'_> {
-    pub(super) fn light(&self, at: &Item, l: &LightDef) -> Result<Light, SceneError> {
+    /// A `[[lights]]` entry, placed in its group (if it names one), and that group.
+    pub(super) fn light(
+        &self,
+        at: &Item,
+        l: &LightDef,
+    ) -> Result<(Light, Option<usize>), SceneError> {
+        let (group, frame) = self.group_frame(at, l.group.as_deref())?;
+        if group.is_none() {
+            return Ok((self.light_in_frame(at, l)?, None));
+        }
+        // The entry's points and directions carried into the world's frame, and its radii
+        // scaled with them (which needs the same scale in every direction).
+        let frame = Placement::new(ObjectPlacement::IDENTITY, frame, group);
+        let radius_scale = match (l.radius, frame.even_scale()) {
+            (None, _) => 1.0,
+            (Some(_), Some(s)) => s,
+            (Some(_), None) => {
+                return Err(self.field_error(
+                    at,
+                    "group",
+                    "the group stretches space unevenly, which would make this light's \
+                     round emitter an ellipse: give its groups the same scale on every axis",
+                ));
+            }
+        };
+        let vector = |v: Option<V3>| {
+            v.map(|v| Fixed(frame.vector(Vec3::from(v).as_dvec3()).as_vec3().to_array()))
+        };
+        let placed = LightDef {
+            position: l.position.map(|p| frame.point(p)),
+            corner: l.corner.map(|p| frame.point(p)),
+            direction: vector(l.direction),
+            edge_u: vector(l.edge_u),
+            edge_v: vector(l.edge_v),
+            radius: l.radius.map(|r| (r as f64 * radius_scale) as f32),
+            group: None,
+            kind: l.kind.clone(),
+            falloff: l.falloff.clone(),
+            ..*l
+        };
+        Ok((self.light_in_frame(at, &placed)?, group))
+    }
+
+    /// A `[[lights]]` entry whose values are in the world's frame.
+    fn light_in_frame(&self, at: &Item, l: &LightDef) -> Result<Light, SceneError> {
         let kind = l.kind.as_deref().unwrap_or("point");
         // The fields each type takes; any other given is refused by name.
         let takes: &[&str] = match kind {

@@ -198,6 +198,7 @@ pub(super) fn validate_tree(
         origin: glam::DVec3::from(eye),
         reads: Default::default(),
         materials: Default::default(),
+        groups: Default::default(),
     };
     let result = v.scene(file);
     for read in v.reads.into_inner() {

@@ -27,6 +27,8 @@ pub(super) struct MeshDef {
     pub(super) material: Option<String>,
     pub(super) smooth: Option<bool>,
     pub(super) shadow: Option<bool>,
+    /// The group it is placed in.
+    pub(super) group: Option<String>,
     pub(super) translate: Option<P3>,
     pub(super) rotate: Option<V3>,
     /// A number or [sx, sy, sz].

@@ -17,6 +17,8 @@ mod entry_def;
 mod error;
 mod fixed_array;
 mod frames;
+mod group_edit;
+mod groups;
 mod kinds;
 mod lights;
 mod load;

@@ -9,7 +9,7 @@ use crate::appearance::{
 };
 use crate::camera::Camera;
 use crate::messages::shortest;
-use crate::scene::{Scene, ShapeDesc};
+use crate::scene::{ObjectPlacement, Scene, ShapeDesc};
 use glam::{DVec3, Vec3};
 use std::collections::BTreeMap;
 use thiserror::Error;
@@ -53,6 +53,7 @@ pub fn saved_text(
     let before = &loaded.scene;
     let same_parts = before.objects.len() == edited.objects.len()
         && before.lights.len() == edited.lights.len()
+        && before.groups.len() == edited.groups.len()
         && before.objects.iter().zip(&edited.objects).all(|(a, b)| {
             // A placement edit may put a shape under a transform: the same kind still.
             let kind = |s: &ShapeDesc| match s {
@@ -76,6 +77,9 @@ pub fn saved_text(
         write_fog(&mut doc, fog)?;
     }
     for (i, (was, now)) in before.lights.iter().zip(&edited.lights).enumerate() {
+        // A light in a group moves only with its group, whose entry says where it is.
+        let grouped = edited.groups.iter().any(|g| g.lights.contains(&i));
+        let now = if grouped { &now.placed_as(was) } else { now };
         if was != now {
             let entry = array_entry(&mut doc, "lights", i)?;
             write_light(entry, was, now, origin);
@@ -317,9 +321,9 @@ fn write_materials(
     Ok(())
 }
 
-/// Objects placed anew in the viewer: each entry's `translate`, `rotate` and `scale` that
-/// changed are written. The parts of one mesh entry (one per MTL material) move together
-/// or not at all.
+/// Objects and groups placed anew in the viewer: each entry's `translate`, `rotate` and
+/// `scale` that changed are written. The parts of one mesh entry (one per MTL material)
+/// move together or not at all.
 fn write_placements(
     doc: &mut DocumentMut,
     loaded: &LoadedScene,
@@ -344,23 +348,34 @@ fn write_placements(
             continue;
         }
         let entry = array_entry(doc, table, index)?;
-        if now.translate != was.translate {
-            set(entry, "translate", doubles(now.translate.to_array()));
-        }
-        if now.rotate != was.rotate {
-            set(entry, "rotate", vector(now.rotate));
-        }
-        if now.scale != was.scale {
-            let s = now.scale;
-            let value = if s.x == s.y && s.y == s.z {
-                Value::from(s.x)
-            } else {
-                doubles(s.to_array())
-            };
-            set(entry, "scale", value);
+        write_placement(entry, &was, &now);
+    }
+    for (i, (was, now)) in before.groups.iter().zip(&edited.groups).enumerate() {
+        if was.placement != now.placement {
+            let entry = array_entry(doc, "groups", i)?;
+            write_placement(entry, &was.placement, &now.placement);
         }
     }
     Ok(())
+}
+
+/// The fields of an entry's placement that changed from `was` to `now`.
+fn write_placement(entry: &mut dyn TableLike, was: &ObjectPlacement, now: &ObjectPlacement) {
+    if now.translate != was.translate {
+        set(entry, "translate", doubles(now.translate.to_array()));
+    }
+    if now.rotate != was.rotate {
+        set(entry, "rotate", vector(now.rotate));
+    }
+    if now.scale != was.scale {
+        let s = now.scale;
+        let value = if s.x == s.y && s.y == s.z {
+            Value::from(s.x)
+        } else {
+            doubles(s.to_array())
+        };
+        set(entry, "scale", value);
+    }
 }
 
 /// Three f64s, as an array.

@@ -24,6 +24,8 @@ pub(super) struct SphereDef {
     pub(super) radius: f32,
     pub(super) material: Option<String>,
     pub(super) shadow: Option<bool>,
+    /// The group it is placed in.
+    pub(super) group: Option<String>,
     pub(super) translate: Option<P3>,
     pub(super) rotate: Option<V3>,
     /// A number or [sx, sy, sz].
@@ -40,6 +42,8 @@ pub(super) struct CylinderDef {
     pub(super) caps: Option<bool>,
     pub(super) material: Option<String>,
     pub(super) shadow: Option<bool>,
+    /// The group it is placed in.
+    pub(super) group: Option<String>,
     pub(super) translate: Option<P3>,
     pub(super) rotate: Option<V3>,
     /// A number or [sx, sy, sz].
@@ -55,6 +59,8 @@ pub(super) struct CapsuleDef {
     pub(super) height: f32,
     pub(super) material: Option<String>,
     pub(super) shadow: Option<bool>,
+    /// The group it is placed in.
+    pub(super) group: Option<String>,
     pub(super) translate: Option<P3>,
     pub(super) rotate: Option<V3>,
     /// A number or [sx, sy, sz].
@@ -68,6 +74,8 @@ pub(super) struct PolygonDef {
     pub(super) vertices: Vec<P3>,
     pub(super) material: Option<String>,
     pub(super) shadow: Option<bool>,
+    /// The group it is placed in.
+    pub(super) group: Option<String>,
     pub(super) translate: Option<P3>,
     pub(super) rotate: Option<V3>,
     /// A number or [sx, sy, sz].
@@ -81,6 +89,8 @@ pub(super) struct TriangleDef {
     pub(super) vertices: Fixed<P3, 3>,
     pub(super) material: Option<String>,
     pub(super) shadow: Option<bool>,
+    /// The group it is placed in.
+    pub(super) group: Option<String>,
     pub(super) translate: Option<P3>,
     pub(super) rotate: Option<V3>,
     /// A number or [sx, sy, sz].
@@ -94,6 +104,8 @@ pub(super) struct TetrahedronDef {
     pub(super) vertices: Fixed<P3, 4>,
     pub(super) material: Option<String>,
     pub(super) shadow: Option<bool>,
+    /// The group it is placed in.
+    pub(super) group: Option<String>,
     pub(super) translate: Option<P3>,
     pub(super) rotate: Option<V3>,
     /// A number or [sx, sy, sz].
@@ -416,6 +428,8 @@ pub(super) struct BoxDef {
     max: P3,
     pub(super) material: Option<String>,
     pub(super) shadow: Option<bool>,
+    /// The group it is placed in.
+    pub(super) group: Option<String>,
     pub(super) translate: Option<P3>,
     pub(super) rotate: Option<V3>,
     /// A number or [sx, sy, sz].
@@ -431,6 +445,8 @@ pub(super) struct DiscDef {
     radius: f32,
     pub(super) material: Option<String>,
     pub(super) shadow: Option<bool>,
+    /// The group it is placed in.
+    pub(super) group: Option<String>,
     pub(super) translate: Option<P3>,
     pub(super) rotate: Option<V3>,
     /// A number or [sx, sy, sz].
@@ -445,6 +461,8 @@ pub(super) struct PlaneDef {
     normal: V3,
     pub(super) material: Option<String>,
     pub(super) shadow: Option<bool>,
+    /// The group it is placed in.
+    pub(super) group: Option<String>,
     pub(super) translate: Option<P3>,
     pub(super) rotate: Option<V3>,
     /// A number or [sx, sy, sz].
@@ -462,6 +480,8 @@ pub(super) struct ConeDef {
     pub(super) caps: Option<bool>,
     pub(super) material: Option<String>,
     pub(super) shadow: Option<bool>,
+    /// The group it is placed in.
+    pub(super) group: Option<String>,
     pub(super) translate: Option<P3>,
     pub(super) rotate: Option<V3>,
     /// A number or [sx, sy, sz].
@@ -477,6 +497,8 @@ pub(super) struct TorusDef {
     minor_radius: f32,
     pub(super) material: Option<String>,
     pub(super) shadow: Option<bool>,
+    /// The group it is placed in.
+    pub(super) group: Option<String>,
     pub(super) translate: Option<P3>,
     pub(super) rotate: Option<V3>,
     /// A number or [sx, sy, sz].

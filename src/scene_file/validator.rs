@@ -31,6 +31,9 @@ pub(super) struct Validator<'a> {
     /// The file's `[materials]`, once read: what CSG members name. (Unset when an entry is
     /// placed again for an edit, which keeps its members' materials.)
     pub(super) materials: std::cell::OnceCell<std::collections::HashMap<String, Material>>,
+    /// The file's `[[groups]]`, once read (an edit's placements in them): what entries'
+    /// `group` names.
+    pub(super) groups: std::cell::OnceCell<Vec<crate::scene::SceneGroup>>,
 }
 
 /// Where a problem is: the span of the table it is in, and how to name that table.

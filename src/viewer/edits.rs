@@ -5,6 +5,8 @@ use super::app::App;
 use super::history::EditKey;
 use super::panel;
 use super::render_thread::Request;
+use prism::scene::{EditError, Scene};
+use prism::scene_file::LoadedScene;
 use std::time::Instant;
 
 impl App {
@@ -12,18 +14,18 @@ impl App {
     pub(super) fn apply(&mut self, changes: panel::Changes) {
         let now = Instant::now();
         let mut edits = changes.edits;
-        if let Some((object, placement, field)) = changes.place
-            && let Some(loaded) = &self.document.loaded
-        {
-            // The entry is validated again with these values, as a load of the file would be.
-            let before = self.panel.scene.clone();
-            match loaded.place_object(&mut self.panel.scene, object, placement) {
-                Ok(()) if self.panel.scene != before => {
-                    edits.push((EditKey(format!("object {object} {field}")), before))
-                }
-                Ok(()) => {}
-                Err(e) => self.panel.message = Some((e.to_string(), true)),
-            }
+        // The entries are validated again with these values, as a load of the file would be.
+        if let Some((object, placement, field)) = changes.place {
+            let key = EditKey(format!("object {object} {field}"));
+            self.place(&mut edits, key, |loaded, scene| {
+                loaded.place_object(scene, object, placement)
+            });
+        }
+        if let Some((group, placement, field)) = changes.place_group {
+            let key = EditKey(format!("group {group} {field}"));
+            self.place(&mut edits, key, |loaded, scene| {
+                loaded.place_group(scene, group, placement)
+            });
         }
         let edited = !edits.is_empty();
         for (key, before) in edits {
@@ -109,6 +111,25 @@ impl App {
                 self.say("redid the edit".into(), false);
             }
             None => self.say("nothing to redo".into(), false),
+        }
+    }
+
+    /// Places entries anew by `place` (of the loaded file), noting the edit in `edits` as
+    /// `key` when it changed the scene and showing why when it was refused.
+    fn place(
+        &mut self,
+        edits: &mut Vec<(EditKey, Scene)>,
+        key: EditKey,
+        place: impl FnOnce(&LoadedScene, &mut Scene) -> Result<(), EditError>,
+    ) {
+        let Some(loaded) = &self.document.loaded else {
+            return;
+        };
+        let before = self.panel.scene.clone();
+        match place(loaded, &mut self.panel.scene) {
+            Ok(()) if self.panel.scene != before => edits.push((key, before)),
+            Ok(()) => {}
+            Err(e) => self.panel.message = Some((e.to_string(), true)),
         }
     }
 }

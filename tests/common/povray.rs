@@ -48,3 +48,15 @@ pub fn prism_render(text: &str, w: u32, h: u32, samples: Option<u32>) -> image::
     settings.samples = samples;
     super::render_scene(&scene, settings)
 }
+
+/// How many pixels differ by more than `by` levels on some channel, and the mean difference.
+pub fn compare(a: &image::RgbImage, b: &image::RgbImage, by: u8) -> (usize, f64) {
+    let mut far = 0;
+    let mut sum = 0u64;
+    for (p, q) in a.pixels().zip(b.pixels()) {
+        let d = (0..3).map(|c| p[c].abs_diff(q[c])).max().unwrap();
+        far += (d > by) as usize;
+        sum += d as u64;
+    }
+    (far, sum as f64 / (a.width() * a.height()) as f64)
+}

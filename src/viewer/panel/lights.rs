@@ -18,12 +18,21 @@ impl PanelState {
                 LightKind::Directional { .. } => "directional",
                 LightKind::Area { .. } => "area",
             };
-            ui.label(format!("light {i} ({kind})"));
+            // A light in a group is where its group puts it: move the group.
+            let group = self.scene.groups.iter().find(|g| g.lights.contains(&i));
+            let free = group.is_none();
+            match group {
+                Some(g) => ui.label(format!("light {i} ({kind}) in group {}", g.name)),
+                None => ui.label(format!("light {i} ({kind})")),
+            };
             let mut color = light.color;
             let mut center = light.center().map(|c| origin + c.as_dvec3());
             let mut changed = color_row(ui, "colour", &mut color, 0.0..=MAX_RADIANCE, false);
             if let Some(world) = &mut center {
-                changed |= position_row(ui, "at", world);
+                let moved = ui
+                    .add_enabled_ui(free, |ui| position_row(ui, "at", world))
+                    .inner;
+                changed |= moved;
             }
             if changed {
                 let center = center.map(|w| (w - origin).as_vec3());
@@ -51,7 +60,8 @@ impl PanelState {
                 LightKind::Area { shape, .. } => {
                     let mut size = shape.size();
                     let speed = size * 0.01;
-                    let r = ui.add(
+                    let r = ui.add_enabled(
+                        free,
                         DragValue::new(&mut size)
                             .speed(speed)
                             .range(MIN_LENGTH as f32..=f32::MAX)
@@ -83,7 +93,8 @@ impl PanelState {
                     }
                     // 0: a point and hard shadows; above: a disc and soft ones.
                     let mut r = radius;
-                    let d = ui.add(
+                    let d = ui.add_enabled(
+                        free,
                         DragValue::new(&mut r)
                             .speed((radius * 0.01).max(1e-3))
                             .range(0.0..=prism::limits::MAX_COORDINATE as f32)

@@ -70,6 +70,8 @@ pub struct Changes {
     /// Place an object's entry anew (its `translate`, `rotate`, `scale`), and which of the
     /// three changed.
     pub place: Option<(usize, ObjectPlacement, &'static str)>,
+    /// Place a group anew, as `place` an object: its members follow.
+    pub place_group: Option<(usize, ObjectPlacement, &'static str)>,
 }
 
 /// The file the viewer shows, as the panel reports it.
@@ -122,6 +124,9 @@ pub struct PanelState {
     pub orbit: bool,
     /// Whether an even scale is shown per axis, to make it uneven.
     scale_per_axis: bool,
+    /// The group whose placement the transform rows edit, for the selected object (one of
+    /// its groups); else the object's own.
+    placing_group: Option<(usize, usize)>,
 }
 
 impl PanelState {
@@ -144,6 +149,7 @@ impl PanelState {
             plot_by_samples: false,
             orbit: false,
             scale_per_axis: false,
+            placing_group: None,
         }
     }
 

@@ -7,6 +7,7 @@ use egui::{DragValue, RichText, Slider, SliderClamping};
 use glam::DVec3;
 use prism::appearance::{Relief, Texture};
 use prism::limits::{MAX_PHONG_FACTOR, MAX_RADIANCE, MAX_SHININESS};
+use prism::scene::ObjectPlacement;
 
 /// The depth of a material's bumps or the strength of its normal map, when it has one;
 /// the field changed, if one was.
@@ -64,55 +65,35 @@ impl PanelState {
             return;
         };
         ui.label(RichText::new(format!("Selected: {}", self.scene.objects[i].name)).strong());
-        // Its entry's `translate`, `rotate` and `scale`, as the file has them.
-        let mut p = self.scene.objects[i].placement;
-        let before = p;
-        position_row(ui, "translate", &mut p.translate);
-        ui.horizontal(|ui| {
-            ui.label("rotate °").on_hover_text(
-                "The file's `rotate`: degrees about x, then y, then z, about the world's \
-                 origin, after the scale and before the move",
-            );
-            let r = &mut p.rotate;
-            // Any finite angle, as in the file: place_object refuses the rest.
-            xyz(ui, [&mut r.x, &mut r.y, &mut r.z], |d| d.speed(0.5));
-        });
-        ui.horizontal(|ui| {
-            ui.label("scale").on_hover_text(
-                "The file's `scale`: about the world's origin, before the turn and the move",
-            );
-            fn factor(d: DragValue<'_>) -> DragValue<'_> {
-                d.range(prism::limits::SCALE)
-                    .speed(0.01)
-                    .custom_formatter(|v, _| scale_text(v))
-            }
-            let even = p.scale.x == p.scale.y && p.scale.y == p.scale.z;
-            if even && !self.scale_per_axis {
-                let mut k = p.scale.x;
-                if ui.add(factor(DragValue::new(&mut k))).changed() {
-                    p.scale = DVec3::splat(k);
+        // What the transform rows place: the object, or one of the groups it is in.
+        let chain = self.scene.group_chain(self.scene.objects[i].group);
+        let mut target = self
+            .placing_group
+            .filter(|(object, g)| *object == i && chain.contains(g))
+            .map(|(_, g)| g);
+        if !chain.is_empty() {
+            ui.horizontal_wrapped(|ui| {
+                ui.label("place").on_hover_text(
+                    "The transform rows edit the object's own placement, or that of a group \
+                     it is in (innermost first): everything in the group follows",
+                );
+                ui.radio_value(&mut target, None, "object");
+                for &g in &chain {
+                    let name = format!("group {}", self.scene.groups[g].name);
+                    ui.radio_value(&mut target, Some(g), name);
                 }
-            } else {
-                let s = &mut p.scale;
-                xyz(ui, [&mut s.x, &mut s.y, &mut s.z], factor);
-            }
-            let mut per_axis = self.scale_per_axis || !even;
-            if ui
-                .add_enabled(even, egui::Checkbox::new(&mut per_axis, "per axis"))
-                .changed()
-            {
-                self.scale_per_axis = per_axis;
-            }
-        });
-        let field = if p.translate != before.translate {
-            "translate"
-        } else if p.rotate != before.rotate {
-            "rotate"
-        } else {
-            "scale"
+            });
+        }
+        self.placing_group = target.map(|g| (i, g));
+        let before = match target {
+            Some(g) => self.scene.groups[g].placement,
+            None => self.scene.objects[i].placement,
         };
-        if p != before {
-            changes.place = Some((i, p, field));
+        if let Some((p, field)) = self.placement_rows(ui, before) {
+            match target {
+                Some(g) => changes.place_group = Some((g, p, field)),
+                None => changes.place = Some((i, p, field)),
+            }
         }
         let mut m = self.scene.objects[i].material.clone();
         let before = m.clone();
@@ -209,5 +190,62 @@ impl PanelState {
                 s.set_material(i, m)
             });
         }
+    }
+    /// The `translate`, `rotate` and `scale` rows of an entry placed as `before` (an
+    /// object's or a group's, in its own frame); the new placement and the field changed,
+    /// if one was.
+    fn placement_rows(
+        &mut self,
+        ui: &mut egui::Ui,
+        before: ObjectPlacement,
+    ) -> Option<(ObjectPlacement, &'static str)> {
+        let mut p = before;
+        position_row(ui, "translate", &mut p.translate);
+        ui.horizontal(|ui| {
+            ui.label("rotate °").on_hover_text(
+                "The file's `rotate`: degrees about x, then y, then z, about the origin of \
+                 the entry's frame (its group's, or the world's), after the scale and before \
+                 the move",
+            );
+            let r = &mut p.rotate;
+            // Any finite angle, as in the file: placing the entry refuses the rest.
+            xyz(ui, [&mut r.x, &mut r.y, &mut r.z], |d| d.speed(0.5));
+        });
+        ui.horizontal(|ui| {
+            ui.label("scale").on_hover_text(
+                "The file's `scale`: about the origin of the entry's frame, before the turn \
+                 and the move",
+            );
+            fn factor(d: DragValue<'_>) -> DragValue<'_> {
+                d.range(prism::limits::SCALE)
+                    .speed(0.01)
+                    .custom_formatter(|v, _| scale_text(v))
+            }
+            let even = p.scale.x == p.scale.y && p.scale.y == p.scale.z;
+            if even && !self.scale_per_axis {
+                let mut k = p.scale.x;
+                if ui.add(factor(DragValue::new(&mut k))).changed() {
+                    p.scale = DVec3::splat(k);
+                }
+            } else {
+                let s = &mut p.scale;
+                xyz(ui, [&mut s.x, &mut s.y, &mut s.z], factor);
+            }
+            let mut per_axis = self.scale_per_axis || !even;
+            if ui
+                .add_enabled(even, egui::Checkbox::new(&mut per_axis, "per axis"))
+                .changed()
+            {
+                self.scale_per_axis = per_axis;
+            }
+        });
+        let field = if p.translate != before.translate {
+            "translate"
+        } else if p.rotate != before.rotate {
+            "rotate"
+        } else {
+            "scale"
+        };
+        (p != before).then_some((p, field))
     }
 }

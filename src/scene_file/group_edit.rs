@@ -1,0 +1,48 @@
+//! A group placed anew (the viewer's transform rows on a group): every object and light
+//! within it placed again, as a load of the file with the group's new values would place
+//! them, or none, with the reason, when one of them breaks the file's rules.
+
+use super::entry::edit_error;
+use super::load::LoadedScene;
+use crate::scene::{EditError, ObjectPlacement, Scene};
+
+impl LoadedScene {
+    /// Places `scene`'s group `group` by `placement` (its entry's `translate`, `rotate` and
+    /// `scale`): the objects, lights and groups within it follow. The scene is unchanged
+    /// when any of them would be refused.
+    pub fn place_group(
+        &self,
+        scene: &mut Scene,
+        group: usize,
+        placement: ObjectPlacement,
+    ) -> Result<(), EditError> {
+        let Some(g) = scene.groups.get(group) else {
+            return Err(EditError::NoSuchGroup(group));
+        };
+        let name = g.name.clone();
+        let mut placed = scene.clone();
+        placed.groups[group].placement = placement;
+        // One object per entry: a mesh entry places all its parts together.
+        let mut entries = Vec::new();
+        let mut objects = Vec::new();
+        for (i, o) in scene.objects.iter().enumerate() {
+            let within = o.group.is_some_and(|g| scene.group_within(g, group));
+            let entry = self.origins.get(i).map(|o| (o.table, o.index));
+            if within && !entries.contains(&entry) {
+                entries.push(entry);
+                objects.push((i, o.placement));
+            }
+        }
+        let lights: Vec<usize> = (0..scene.groups.len())
+            .filter(|&g| scene.group_within(g, group))
+            .flat_map(|g| scene.groups[g].lights.iter().copied())
+            .collect();
+        let entries = self
+            .placed_entries(&placed, &objects, &lights)
+            .map_err(|e| edit_error(e, &name))?
+            .ok_or(EditError::NoSuchGroup(group))?;
+        entries.apply(&mut placed);
+        *scene = placed;
+        Ok(())
+    }
+}
