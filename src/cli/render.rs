@@ -34,6 +34,9 @@ pub fn run(args: RenderArgs) -> Result<()> {
         Some(path) => SceneFrames::load(path)?,
         None => SceneFrames::fixed(prism::seed::scene()?),
     };
+    for note in source.unread() {
+        eprintln!("prism: warning: not read: {note}");
+    }
     let frames = FrameChoice::from_args(&args)?.frames(source.animation())?;
     let out = OutputTemplate::parse("--out", &args.out)?;
     let stats_out = match &args.stats_json {

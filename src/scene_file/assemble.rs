@@ -34,6 +34,8 @@ pub struct ObjectOrigin {
     /// The name of the `[materials]` entry it uses; None for the default material or for
     /// a mesh part whose material comes from the mesh's own MTL file.
     pub material: Option<String>,
+    /// What the entry's file (a glTF scene) holds that prism does not read, in words.
+    pub unread: Vec<String>,
 }
 
 /// The whole file as parsed: the scene-wide tables, then one array of tables per kind of
@@ -143,6 +145,7 @@ impl Validator<'_> {
                 table: kind,
                 index: i,
                 material: d.material().map(str::to_string),
+                unread: Vec::new(),
             });
             Ok(())
         };
@@ -165,6 +168,8 @@ impl Validator<'_> {
         }
         object_kinds!(shape_entries);
         let mut mesh_files = MeshFiles::default();
+        // A glTF file's camera that a mesh entry chose to view the scene through.
+        let mut chosen_camera = None;
         for (i, m) in file.meshes.iter().enumerate() {
             let d = m.get_ref();
             let label = entry_label("meshes", i, d.name());
@@ -187,7 +192,37 @@ impl Validator<'_> {
                 })?),
             };
             let placement = self.placement(&at, d)?;
-            let parts = self.mesh_objects(&at, d, material, &mut mesh_files, &mut images)?;
+            let entry = self.mesh_objects(&at, d, material, &mut mesh_files, &mut images)?;
+            for light in entry.lights {
+                lights.push(self.gltf_light(&at, light, &placement)?);
+            }
+            let mut unread = entry.unread.to_vec();
+            match &d.camera {
+                Some(_) if !super::gltf_file::is_gltf(&d.path) => {
+                    return Err(self.field_error(
+                        &at,
+                        "camera",
+                        "`camera` chooses a glTF file's camera; an OBJ file has none",
+                    ));
+                }
+                Some(choice) => {
+                    if chosen_camera.is_some() {
+                        return Err(self.field_error(
+                            &at,
+                            "camera",
+                            "another mesh entry chose the camera already",
+                        ));
+                    }
+                    let view = self.gltf_view(&at, entry.cameras, choice)?;
+                    chosen_camera = Some(self.gltf_camera(&at, view, &placement, &camera)?);
+                }
+                None if !entry.cameras.is_empty() => unread.push(format!(
+                    "its {} camera(s) (the entry's `camera` chooses one; [camera] is used)",
+                    entry.cameras.len()
+                )),
+                None => {}
+            }
+            let parts = entry.objects;
             let transform =
                 self.mesh_transform(&at, parts.iter().map(|p| p.mesh.as_ref()), &placement)?;
             let name = d.name.clone().unwrap_or_else(|| format!("meshes {i}"));
@@ -210,12 +245,13 @@ impl Validator<'_> {
                     table: "meshes",
                     index: i,
                     material: d.material.clone(),
+                    unread: unread.clone(),
                 });
             }
         }
         let scene = Scene {
             origin: self.origin,
-            camera,
+            camera: chosen_camera.unwrap_or(camera),
             render,
             background,
             ambient,

@@ -82,6 +82,23 @@ impl<'a> Assets<'a> {
 /// The text of the file at `path`, `what` (a scene file, a mesh file): a regular file of at
 /// most `max` bytes, in UTF-8.
 pub(super) fn read_text_file(path: &Path, max: u64, what: &str) -> Result<String, SceneError> {
+    let bytes = read_file(path, max, what)?;
+    String::from_utf8(bytes).map_err(|e| {
+        let valid = &e.as_bytes()[..e.utf8_error().valid_up_to()];
+        let text = std::str::from_utf8(valid).unwrap_or_default();
+        let (line, column) = line_column(text, text.len());
+        SceneError::Syntax {
+            path: path.to_path_buf(),
+            line,
+            column,
+            message: "the text is not valid UTF-8 here".into(),
+        }
+    })
+}
+
+/// The bytes of the file at `path`, `what` (a mesh file, a glTF buffer): a regular file of
+/// at most `max` bytes.
+pub(super) fn read_file(path: &Path, max: u64, what: &str) -> Result<Vec<u8>, SceneError> {
     use crate::messages::io_message;
     use std::io::Read;
     let fail = |reason: String| SceneError::Read {
@@ -117,15 +134,5 @@ pub(super) fn read_text_file(path: &Path, max: u64, what: &str) -> Result<String
     if bytes.len() as u64 > max {
         return Err(too_large());
     }
-    String::from_utf8(bytes).map_err(|e| {
-        let valid = &e.as_bytes()[..e.utf8_error().valid_up_to()];
-        let text = std::str::from_utf8(valid).unwrap_or_default();
-        let (line, column) = line_column(text, text.len());
-        SceneError::Syntax {
-            path: path.to_path_buf(),
-            line,
-            column,
-            message: "the text is not valid UTF-8 here".into(),
-        }
-    })
+    Ok(bytes)
 }

@@ -3,6 +3,8 @@
 
 use super::error::SceneError;
 use super::fixed_array::Fixed;
+use super::gltf_file::GltfCamera;
+use super::placement::Placement;
 use super::validator::{Item, P3, V3, Validator};
 use crate::camera::Camera;
 use crate::limits;
@@ -156,5 +158,101 @@ impl Validator<'_> {
             .check()
             .map(|()| camera)
             .map_err(|m| self.error(at, m))
+    }
+}
+
+impl Validator<'_> {
+    /// The camera of `cameras` (a glTF file's) that mesh entry `at`'s `camera` names, by
+    /// its name or its index in the file.
+    pub(super) fn gltf_view<'c>(
+        &self,
+        at: &Item,
+        cameras: &'c [GltfCamera],
+        choice: &toml::Value,
+    ) -> Result<&'c GltfCamera, SceneError> {
+        let names: Vec<&str> = cameras.iter().filter_map(|c| c.name.as_deref()).collect();
+        let found = match choice {
+            toml::Value::String(name) => cameras.iter().find(|c| c.name.as_deref() == Some(name)),
+            toml::Value::Integer(i) => cameras.iter().find(|c| c.index as i64 == *i),
+            _ => {
+                return Err(self.field_error(
+                    at,
+                    "camera",
+                    "`camera` is a camera's name or its index in the glTF file",
+                ));
+            }
+        };
+        found.ok_or_else(|| {
+            let shown = match choice {
+                toml::Value::String(name) => quoted(name),
+                other => other.to_string(),
+            };
+            let hint = match choice {
+                toml::Value::String(name) => did_you_mean(name, names.iter().copied()),
+                _ => String::new(),
+            };
+            self.field_error(
+                at,
+                "camera",
+                format!(
+                    "the glTF file's scene has no perspective camera {shown} (it has {}){hint}",
+                    if cameras.is_empty() {
+                        "none".to_string()
+                    } else {
+                        cameras
+                            .iter()
+                            .map(|c| match &c.name {
+                                Some(n) => format!("{} ({})", quoted(n), c.index),
+                                None => c.index.to_string(),
+                            })
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    }
+                ),
+            )
+        })
+    }
+
+    /// The scene's camera from glTF camera `view`, placed by mesh entry `at`'s `placement`:
+    /// its eye, its −z as the view, its vertical field of view, and its roll (if any); the
+    /// lens of the file's `[camera]` (`file`).
+    pub(super) fn gltf_camera(
+        &self,
+        at: &Item,
+        view: &GltfCamera,
+        placement: &Placement,
+        file: &Camera,
+    ) -> Result<Camera, SceneError> {
+        let eye = self.position(at, "camera", placement.point(Fixed(view.eye.to_array())))?;
+        let direction = placement.vector(view.direction);
+        // The scene's up unless the camera rolls (its +y leaves the upright plane through
+        // its view): then its own +y, the only way prism's camera says roll.
+        let scene_up = placement.vector(glam::DVec3::Y);
+        let own_up = placement.vector(view.up);
+        let side = direction.cross(scene_up).normalize_or_zero();
+        let up = if own_up.normalize_or_zero().dot(side).abs() < 1e-4 {
+            scene_up
+        } else {
+            own_up
+        };
+        let (direction, up) = (direction.as_vec3(), up.as_vec3());
+        let vfov = view.yfov.to_degrees();
+        let (lo, hi) = (*limits::VFOV.start(), *limits::VFOV.end());
+        if !(lo..=hi).contains(&vfov) {
+            return Err(self.field_error(
+                at,
+                "camera",
+                format!("the camera's yfov is {vfov}°; a field of view is from {lo}° to {hi}°"),
+            ));
+        }
+        let mut camera = Camera::looking_along_up(eye, direction, up, vfov).ok_or_else(|| {
+            self.field_error(at, "camera", "the camera's node leaves it no direction")
+        })?;
+        camera.aperture = file.aperture;
+        camera.focus_distance = file.focus_distance;
+        camera
+            .check()
+            .map_err(|e| self.field_error(at, "camera", e.to_string()))?;
+        Ok(camera)
     }
 }

@@ -78,6 +78,8 @@ pub struct SceneFrames {
     files: Vec<PathBuf>,
     /// The meshes and images the frames read, each once for all of them.
     cache: ReadCache,
+    /// What the files its entries name hold that prism does not read (`LoadedScene::unread`).
+    unread: Vec<String>,
 }
 
 enum FramesKind {
@@ -95,6 +97,7 @@ impl SceneFrames {
         let cache = ReadCache::default();
         let load = load_scene_file_cached(path, 0, &cache);
         let loaded = load.result?;
+        let unread = loaded.unread();
         let kind = match loaded.animation {
             None => FramesKind::Still(Box::new(loaded.scene)),
             Some(animation) => FramesKind::Animated {
@@ -106,7 +109,13 @@ impl SceneFrames {
             kind,
             files: load.files,
             cache,
+            unread,
         })
+    }
+
+    /// What the files the scene's entries name hold that prism does not read.
+    pub fn unread(&self) -> &[String] {
+        &self.unread
     }
 
     /// A still scene.
@@ -115,6 +124,7 @@ impl SceneFrames {
             kind: FramesKind::Still(Box::new(scene)),
             files: Vec::new(),
             cache: ReadCache::default(),
+            unread: Vec::new(),
         }
     }
 

@@ -3,11 +3,18 @@
 
 use super::error::SceneError;
 use super::fixed_array::Fixed;
+use super::gltf_file::{GltfLight, GltfLightKind};
 use super::placement::Placement;
 use super::validator::{Item, P3, V3, Validator};
 use crate::appearance::{AreaShape, Falloff, Light, LightKind, SpotCone};
 use crate::messages::{did_you_mean, quoted};
 use crate::scene::ObjectPlacement;
+
+/// prism's intensity for one candela of a glTF light (and its colour for one lux of a
+/// directional one): a candela is 1/683 W/sr, and prism's diffuse shading leaves out the
+/// 1/π of a Lambertian surface's radiance, so that a glTF light lights a white surface as
+/// a physically based renderer would show it.
+pub const PRISM_PER_CANDELA: f32 = 1.0 / (683.0 * std::f32::consts::PI);
 use glam::Vec3;
 use serde::Deserialize;
 
@@ -74,6 +81,61 @@ impl Validator<'_> {
             ..*l
         };
         Ok((self.light_in_frame(at, &placed)?, group))
+    }
+
+    /// A glTF file's light, placed by its mesh entry `at`'s `placement`: its candela (or a
+    /// directional light's lux) as prism's intensity (or colour) by the rule in
+    /// `PRISM_PER_CANDELA`, and held to every light's rules.
+    pub(super) fn gltf_light(
+        &self,
+        at: &Item,
+        light: &GltfLight,
+        placement: &Placement,
+    ) -> Result<Light, SceneError> {
+        let scale = light.intensity * PRISM_PER_CANDELA;
+        let point = Some(placement.point(Fixed(light.position.to_array())));
+        let direction = Some(Fixed(
+            placement.vector(light.direction).as_vec3().to_array(),
+        ));
+        let color = light.color;
+        let (kind, angle, softness) = match light.kind {
+            GltfLightKind::Point => ("point", None, None),
+            GltfLightKind::Spot { inner, outer } => {
+                let softness = if outer > 0.0 {
+                    1.0 - inner / outer
+                } else {
+                    0.0
+                };
+                (
+                    "spot",
+                    Some(outer.to_degrees()),
+                    Some(softness.clamp(0.0, 1.0)),
+                )
+            }
+            GltfLightKind::Directional => ("directional", None, None),
+        };
+        let directional = light.kind == GltfLightKind::Directional;
+        let def = LightDef {
+            kind: Some(kind.into()),
+            position: (!directional).then_some(point).flatten(),
+            direction: (light.kind != GltfLightKind::Point)
+                .then_some(direction)
+                .flatten(),
+            color: Some(Fixed(
+                (if directional { color * scale } else { color }).to_array(),
+            )),
+            falloff: (!directional).then(|| "inverse_square".into()),
+            intensity: (!directional).then_some(scale),
+            corner: None,
+            edge_u: None,
+            edge_v: None,
+            radius: None,
+            angle,
+            softness,
+            visible: None,
+            group: None,
+        };
+        self.light_in_frame(at, &def)
     }
 
     /// A `[[lights]]` entry whose values are in the world's frame.

@@ -39,6 +39,27 @@ pub struct LoadedScene {
     pub frame: u32,
 }
 
+impl LoadedScene {
+    /// What the files its entries name (glTF scenes) hold that prism does not read, each
+    /// entry's once, prefixed by the entry (`meshes[0]: extension KHR_texture_transform`).
+    pub fn unread(&self) -> Vec<String> {
+        let mut seen = Vec::new();
+        let mut out = Vec::new();
+        for o in &self.origins {
+            if o.unread.is_empty() || seen.contains(&(o.table, o.index)) {
+                continue;
+            }
+            seen.push((o.table, o.index));
+            out.extend(
+                o.unread
+                    .iter()
+                    .map(|u| format!("{}[{}]: {u}", o.table, o.index)),
+            );
+        }
+        out
+    }
+}
+
 /// The outcome of loading a scene file, and every file the attempt read or tried to read
 /// (the scene file, textures, meshes, material libraries): what a viewer that reloads on
 /// change watches, whether the load succeeded or not.

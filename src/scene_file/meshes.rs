@@ -3,6 +3,7 @@
 
 use super::assets::read_text_file;
 use super::error::SceneError;
+use super::gltf_file::{GltfCamera, GltfLight, is_gltf};
 use super::mtl::{MtlMaterial, parse_mtl};
 use super::obj::{LineError, parse_obj};
 use super::placement::Placement;
@@ -26,6 +27,8 @@ pub(super) struct MeshDef {
     pub(super) path: String,
     pub(super) material: Option<String>,
     pub(super) smooth: Option<bool>,
+    /// A glTF file's camera to view the scene through: its name or its index.
+    pub(super) camera: Option<toml::Value>,
     pub(super) shadow: Option<bool>,
     /// The group it is placed in.
     pub(super) group: Option<String>,
@@ -51,8 +54,14 @@ struct LoadedFile {
     /// Its `mtllib` names and their lines.
     libraries: Vec<(String, usize)>,
     /// Each part's material from the libraries, once an entry without a material of its
-    /// own has asked for them.
+    /// own has asked for them (a glTF file's, read with it).
     materials: Option<Vec<Material>>,
+    /// A glTF file's lights, in its own frame.
+    lights: Vec<GltfLight>,
+    /// A glTF file's perspective cameras, in its own frame.
+    cameras: Vec<GltfCamera>,
+    /// What the file holds that prism does not read, in words.
+    unread: Vec<String>,
 }
 
 /// One material's part of a mesh file.
@@ -62,6 +71,15 @@ struct LoadedPart {
     /// The line that starts the part.
     line: usize,
     mesh: Arc<Mesh>,
+}
+
+/// What a mesh entry makes: its objects, and a glTF file's lights and what it holds that
+/// prism does not read.
+pub(super) struct MeshEntry<'f> {
+    pub(super) objects: Vec<MeshObject>,
+    pub(super) lights: &'f [GltfLight],
+    pub(super) cameras: &'f [GltfCamera],
+    pub(super) unread: &'f [String],
 }
 
 /// One object a mesh entry makes.
@@ -113,20 +131,25 @@ fn beside(rel: &str, name: &str) -> String {
 }
 
 impl Validator<'_> {
-    /// The objects mesh entry `d` makes: one per material its file uses. `material` is the
-    /// entry's own, when it gives one (the file's libraries are then not read).
-    pub(super) fn mesh_objects(
+    /// The objects mesh entry `d` makes: one per material its OBJ file uses, or one per
+    /// primitive of its glTF file. `material` is the entry's own, when it gives one (an
+    /// OBJ's libraries are then not read).
+    pub(super) fn mesh_objects<'f>(
         &self,
         at: &Item,
         d: &MeshDef,
         material: Option<&Material>,
-        files: &mut MeshFiles,
+        files: &'f mut MeshFiles,
         images: &mut Images,
-    ) -> Result<Vec<MeshObject>, SceneError> {
+    ) -> Result<MeshEntry<'f>, SceneError> {
         let smooth = d.smooth.unwrap_or(true);
         let key = (self.locate(&d.path), smooth);
         if !files.loaded.contains_key(&key) {
-            let file = self.read_mesh(at, &d.path, smooth, files.triangles)?;
+            let file = if is_gltf(&d.path) {
+                self.gltf_mesh(at, &d.path, smooth, files.triangles, images)?
+            } else {
+                self.read_mesh(at, &d.path, smooth, files.triangles)?
+            };
             files.triangles += file
                 .parts
                 .iter()
@@ -139,7 +162,7 @@ impl Validator<'_> {
             file.materials = Some(self.file_materials(at, &d.path, file, images)?);
         }
         let several = file.parts.len() > 1;
-        Ok(file
+        let objects = file
             .parts
             .iter()
             .enumerate()
@@ -152,7 +175,13 @@ impl Validator<'_> {
                     (None, None) => unreachable!("materials read above"),
                 },
             })
-            .collect())
+            .collect();
+        Ok(MeshEntry {
+            objects,
+            lights: &file.lights,
+            cameras: &file.cameras,
+            unread: &file.unread,
+        })
     }
 
     /// From the meshes' space to the scene's under `placement`: the placed meshes must lie
@@ -185,6 +214,58 @@ impl Validator<'_> {
             .ok_or_else(|| self.field_error(at, "scale", "the placement cannot be inverted"))
     }
 
+    /// Reads glTF file `rel` (the scene's meshes hold `triangles` already): its primitives
+    /// as parts, with their materials mapped.
+    fn gltf_mesh(
+        &self,
+        at: &Item,
+        rel: &str,
+        smooth: bool,
+        triangles: usize,
+        images: &mut Images,
+    ) -> Result<LoadedFile, SceneError> {
+        let path = self.locate(rel);
+        let fail = |e: String| {
+            self.field_error(
+                at,
+                "path",
+                format!("glTF file {}: {e}", quoted(&path.display().to_string())),
+            )
+        };
+        let file = self.read_gltf(rel, smooth, triangles).map_err(fail)?;
+        let mut unread = file.unread.clone();
+        let mut materials = self
+            .gltf_materials(rel, &file, images, &mut unread)
+            .map_err(fail)?;
+        // glTF's default material: white, rough, not metal.
+        let default = materials.len();
+        materials.push(Material {
+            texture: Texture::Solid(Vec3::ONE),
+            specular: 0.0,
+            ..Material::default()
+        });
+        let (parts, materials) = file
+            .parts
+            .into_iter()
+            .map(|p| {
+                let part = LoadedPart {
+                    name: Some(p.name),
+                    line: 0,
+                    mesh: p.mesh,
+                };
+                (part, materials[p.material.unwrap_or(default)].clone())
+            })
+            .unzip();
+        Ok(LoadedFile {
+            parts,
+            libraries: Vec::new(),
+            materials: Some(materials),
+            lights: file.lights,
+            cameras: file.cameras,
+            unread,
+        })
+    }
+
     /// Reads and parses mesh file `rel`; the scene's meshes hold `triangles` already.
     fn read_mesh(
         &self,
@@ -215,6 +296,9 @@ impl Validator<'_> {
                     .collect(),
                 libraries: read.libraries,
                 materials: None,
+                lights: Vec::new(),
+                cameras: Vec::new(),
+                unread: Vec::new(),
             });
         }
         let text = self.read_asset_text(rel).map_err(|e| {
@@ -240,6 +324,9 @@ impl Validator<'_> {
                 .collect(),
             libraries: obj.libraries,
             materials: None,
+            lights: Vec::new(),
+            cameras: Vec::new(),
+            unread: Vec::new(),
         };
         if let Some(cache) = self.assets.cache() {
             let read = ReadMesh {

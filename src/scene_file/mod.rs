@@ -17,6 +17,8 @@ mod entry_def;
 mod error;
 mod fixed_array;
 mod frames;
+mod gltf_file;
+mod gltf_materials;
 mod group_edit;
 mod groups;
 mod kinds;

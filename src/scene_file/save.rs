@@ -69,6 +69,13 @@ pub fn saved_text(
     let mut skipped = Vec::new();
     if *camera != before.camera {
         write_camera(&mut doc, camera, origin)?;
+        // The view is now the `[camera]` table's: no glTF camera chosen by a mesh entry
+        // overrides it.
+        if let Some(meshes) = doc.get_mut("meshes").and_then(Item::as_array_of_tables_mut) {
+            for entry in meshes.iter_mut() {
+                entry.remove("camera");
+            }
+        }
     }
     write_render(&mut doc, before, edited);
     if edited.fog != before.fog
@@ -76,7 +83,21 @@ pub fn saved_text(
     {
         write_fog(&mut doc, fog)?;
     }
+    // Lights past the file's own come from its glTF scenes, which prism does not write.
+    let written_lights = match doc.get("lights") {
+        Some(Item::ArrayOfTables(a)) => a.len(),
+        Some(Item::Value(Value::Array(a))) => a.len(),
+        _ => 0,
+    };
     for (i, (was, now)) in before.lights.iter().zip(&edited.lights).enumerate() {
+        if i >= written_lights {
+            if was != now {
+                skipped.push(format!(
+                    "light {i}: it comes from a glTF file, which prism does not write"
+                ));
+            }
+            continue;
+        }
         // A light in a group moves only with its group, whose entry says where it is.
         let grouped = edited.groups.iter().any(|g| g.lights.contains(&i));
         let now = if grouped { &now.placed_as(was) } else { now };

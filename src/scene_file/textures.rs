@@ -305,19 +305,49 @@ impl Images {
             return Ok(());
         }
         let (w, h) = v.assets.probe(rel).map_err(|_| BudgetError::Unreadable)?;
-        self.counted.insert(path.clone());
+        self.add(path, w, h).map_err(BudgetError::Exceeded)
+    }
+
+    /// Counts image `path` of `w` × `h` texels (once per path) against the budget.
+    fn add(&mut self, path: PathBuf, w: u32, h: u32) -> Result<(), String> {
+        if !self.counted.insert(path.clone()) {
+            return Ok(());
+        }
         self.texels += w as u64 * h as u64;
         if self.texels > limits::MAX_SCENE_TEXELS {
-            return Err(BudgetError::Exceeded(format!(
+            return Err(format!(
                 "image {} ({w}×{h}) brings the scene's images to {} texels, more than the {} \
                  all of them may have together (textures, background and the meshes' \
                  material images count alike)",
                 quoted(&path.display().to_string()),
                 self.texels,
                 limits::MAX_SCENE_TEXELS
-            )));
+            ));
         }
         Ok(())
+    }
+
+    /// An image held in another file (a glTF buffer's bytes), known by `key`: counted
+    /// against the budget from its header, then decoded once.
+    pub(super) fn load_bytes(
+        &mut self,
+        key: PathBuf,
+        bytes: &[u8],
+    ) -> Result<Arc<ImageTexture>, String> {
+        if let Some(img) = self.loaded.get(&key) {
+            return Ok(img.clone());
+        }
+        let fail = |e: crate::appearance::TextureError| {
+            format!(
+                "cannot load image {}: {e}",
+                quoted(&key.display().to_string())
+            )
+        };
+        let (w, h) = ImageTexture::probe_bytes(bytes).map_err(fail)?;
+        self.add(key.clone(), w, h)?;
+        let img = Arc::new(ImageTexture::decode(bytes).map_err(fail)?);
+        self.loaded.insert(key, img.clone());
+        Ok(img)
     }
 
     /// Image `rel`, decoded once however many name it, after counting it.

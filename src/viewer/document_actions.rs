@@ -160,6 +160,7 @@ impl App {
             (_, true) => "reloaded".into(),
             _ => "opened".into(),
         };
+        let unread = loaded.unread();
         self.document.error = None;
         self.document.saved = Some(scene.clone());
         self.document.loaded = Some(loaded);
@@ -167,6 +168,10 @@ impl App {
         self.panel.camera = camera;
         self.send_scene();
         self.send_camera(false);
-        self.say(format!("{what} {}", path.display()), false);
+        let mut message = format!("{what} {}", path.display());
+        for note in unread {
+            message += &format!("\nnot read: {note}");
+        }
+        self.say(message, false);
     }
 }

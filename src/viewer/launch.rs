@@ -77,11 +77,13 @@ pub fn run(launch: Launch) -> Result<()> {
     }
     let event_loop = match EventLoop::<Wake>::with_user_event().build() {
         Ok(event_loop) => event_loop,
-        // Without a window, a scene that failed to load is the error to report.
+        // Without a window, a scene that failed to load is the error to report (after
+        // why there is no window).
         Err(e) => {
             if let Start::File { load, .. } = start
                 && let Err(scene_error) = load.result
             {
+                eprintln!("prism: cannot open a window: {e}");
                 return Err(scene_error.into());
             }
             return Err(anyhow!(
