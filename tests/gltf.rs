@@ -505,11 +505,19 @@ fn malformed_files_are_refused_with_a_message() {
         &|d| d["buffers"][0]["uri"] = json!("/etc/passwd"),
         "relative",
     );
+    // A GLB whose header gives a length shorter than itself (the crate would take 12 from it).
+    let mut short = whole.clone();
+    short[8..12].copy_from_slice(&3u32.to_le_bytes());
+    cases.push(("header length", short, "cut short"));
     // An index past the vertices: the cube's last index made 200.
     let mut far = bytes.clone();
     let n = far.len();
     far[n - 2..].copy_from_slice(&200u16.to_le_bytes());
     cases.push(("index past the vertices", glb(&good, &far), "index 200"));
+    // A node named with a control character: the message shows it escaped.
+    let mut named = good.clone();
+    named["nodes"][1]["name"] = json!("bo\u{7f}x\nline");
+    cases.push(("control characters", glb(&named, &far), "bo\\u{7f}x\\nline"));
     for (name, file, want) in cases {
         std::fs::write(dir.path("bad.glb"), file).unwrap();
         let path = dir.write(
@@ -521,6 +529,7 @@ fn malformed_files_are_refused_with_a_message() {
             Err(e) => e.to_string(),
         };
         println!("{name}: {e}");
+        assert!(!e.chars().any(char::is_control), "{name}: {e:?}");
         assert!(
             e.contains("meshes[0]") && e.contains("bad.glb"),
             "{name}: {e}"

@@ -9,7 +9,7 @@ use super::assets::read_file;
 use super::validator::Validator;
 use crate::geometry::Mesh;
 use crate::limits;
-use crate::messages::quoted;
+use crate::messages::{quoted, shown};
 use glam::{DMat3, DMat4, DVec3, Vec2, Vec3};
 use gltf::accessor::{DataType, Dimensions};
 use gltf::mesh::Mode;
@@ -180,6 +180,15 @@ pub(super) fn relative_uri(uri: &str) -> Result<String, Refusal> {
 fn parse_gltf(bytes: &[u8]) -> Result<gltf::Gltf, Refusal> {
     use gltf::json::mesh::Semantic;
     use gltf::json::validation::Checked;
+    // The crate takes 12 from a GLB's declared length unchecked.
+    if let Some(header) = bytes.strip_prefix(b"glTF") {
+        let declared = header
+            .get(4..8)
+            .map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]));
+        if declared.is_none_or(|n| n < 12) {
+            return Err("a GLB file whose header is cut short or gives it no length".into());
+        }
+    }
     let unchecked = gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| e.to_string())?;
     let json = unchecked.document.as_json();
     for (i, mesh) in json.meshes.iter().enumerate() {
@@ -343,7 +352,8 @@ impl Validator<'_> {
         let mut unread = Vec::new();
         if let Some(ext) = gltf.extensions_required().next() {
             return Err(format!(
-                "it requires extension {ext}, which prism does not read"
+                "it requires extension {}, which prism does not read",
+                shown(ext)
             ));
         }
         const READ: [&str; 4] = [
@@ -354,7 +364,7 @@ impl Validator<'_> {
         ];
         for ext in gltf.extensions_used() {
             if !READ.contains(&ext) {
-                unread.push(format!("extension {ext}"));
+                unread.push(format!("extension {}", shown(ext)));
             }
         }
         let buffers = self.gltf_buffers(rel, &gltf)?;
@@ -470,9 +480,10 @@ impl NodeWalk<'_> {
         parent: DMat4,
         path: &mut Vec<usize>,
     ) -> Result<(), Refusal> {
+        // Shown as messages show names: control characters escaped, long ones cut.
         let name = node
             .name()
-            .map_or_else(|| format!("nodes[{}]", node.index()), str::to_string);
+            .map_or_else(|| format!("nodes[{}]", node.index()), shown);
         if path.contains(&node.index()) {
             return Err(format!(
                 "{name} lies within itself (the node tree has a loop)"

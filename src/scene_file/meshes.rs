@@ -13,7 +13,7 @@ use super::validator::{Item, P3, V3, Validator};
 use crate::appearance::{Material, Relief, Texture, UvTransform};
 use crate::geometry::{Aabb, Mesh, Transform};
 use crate::limits;
-use crate::messages::quoted;
+use crate::messages::{quoted, shown_within};
 use glam::{DVec3, Vec3};
 use serde::Deserialize;
 use std::collections::HashMap;
@@ -225,11 +225,16 @@ impl Validator<'_> {
         images: &mut Images,
     ) -> Result<LoadedFile, SceneError> {
         let path = self.locate(rel);
+        // The reasons may quote the file's own text (its names, the parser's excerpts).
         let fail = |e: String| {
             self.field_error(
                 at,
                 "path",
-                format!("glTF file {}: {e}", quoted(&path.display().to_string())),
+                format!(
+                    "glTF file {}: {}",
+                    quoted(&path.display().to_string()),
+                    shown_within(&e, 1000)
+                ),
             )
         };
         let file = self.read_gltf(rel, smooth, triangles).map_err(fail)?;
@@ -262,7 +267,7 @@ impl Validator<'_> {
             materials: Some(materials),
             lights: file.lights,
             cameras: file.cameras,
-            unread,
+            unread: unread.iter().map(|u| shown_within(u, 300)).collect(),
         })
     }
 
