@@ -2,11 +2,10 @@
 //! in a short, printable message, and a scene that loads prepares and renders a few
 //! pixels to finite colours, with no panic, hang or runaway allocation on the way.
 
-use prism::render::RenderSettings;
-use prism::scene::PreparedScene;
+mod outcome;
+
 use prism::scene_file::parse_scene;
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
 
 /// A folder laid out like the repository's assets/ (scenes/ beside earth.jpg), with a small
 /// Earth so that the seed scene and its mutants load their texture quickly.
@@ -28,29 +27,7 @@ fn exercise(bytes: &[u8], base: &Path) {
     let Ok(text) = std::str::from_utf8(bytes) else {
         return; // the file reader turns these into a located message (tested in tests/)
     };
-    match parse_scene(text, Path::new("fuzz.toml"), base) {
-        Err(e) => {
-            let message = e.to_string();
-            assert!(!message.is_empty());
-            assert!(
-                message.chars().count() < 2000,
-                "a message of {} chars",
-                message.len()
-            );
-            assert!(
-                !message.chars().any(|c| c.is_control()),
-                "a control character in {message:?}"
-            );
-        }
-        Ok(scene) => {
-            let prepared = Arc::new(PreparedScene::new(&scene));
-            let settings = RenderSettings::new(6, 4, 1);
-            let job = prism::render::render(prepared, scene.camera, settings, |_, _| {});
-            for (i, p) in job.accumulator().pixels.iter().enumerate() {
-                assert!(p.mean().is_finite(), "pixel {i} is {}", p.mean());
-            }
-        }
-    }
+    outcome::check(parse_scene(text, Path::new("fuzz.toml"), base));
 }
 
 fn main() {

@@ -1,7 +1,7 @@
 //! A validated scene: what is where, made of what. Every value here has passed the checks
 //! of the scene file loader, so preparing a `Scene` cannot fail.
 
-use super::group::{SceneGroup, group_frame};
+use super::group::{SceneGroup, group_chain, group_frame};
 use super::placement::ObjectPlacement;
 use crate::accel::CsgOperation;
 use crate::appearance::Material;
@@ -578,28 +578,11 @@ impl Scene {
 
     /// Whether group `group` is `ancestor` or lies within it.
     pub fn group_within(&self, group: usize, ancestor: usize) -> bool {
-        let mut at = Some(group);
-        for _ in 0..=self.groups.len() {
-            match at {
-                Some(g) if g == ancestor => return true,
-                Some(g) => at = self.groups.get(g).and_then(|g| g.parent),
-                None => return false,
-            }
-        }
-        false
+        self.group_chain(Some(group)).contains(&ancestor)
     }
 
     /// The groups from `group` out to the world: it, its parent, and so on.
     pub fn group_chain(&self, group: Option<usize>) -> Vec<usize> {
-        let mut chain = Vec::new();
-        let mut at = group;
-        while let Some(g) = at {
-            if chain.contains(&g) || g >= self.groups.len() {
-                break;
-            }
-            chain.push(g);
-            at = self.groups[g].parent;
-        }
-        chain
+        group_chain(&self.groups, group)
     }
 }

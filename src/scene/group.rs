@@ -17,18 +17,28 @@ pub struct SceneGroup {
     pub lights: Vec<usize>,
 }
 
+/// The groups from `group` out to the world (of `groups`): it, its parent, and so on. The
+/// walk stops before a group it has met (the loader refuses loops; a hand-made scene might
+/// have one) or an index past `groups`.
+pub fn group_chain(groups: &[SceneGroup], group: Option<usize>) -> Vec<usize> {
+    let mut chain = Vec::new();
+    let mut at = group;
+    while let Some(g) = at {
+        if chain.contains(&g) || g >= groups.len() {
+            break;
+        }
+        chain.push(g);
+        at = groups[g].parent;
+    }
+    chain
+}
+
 /// The map from group `group`'s frame (of `groups`) to the world's: its placement, then its
 /// parent's, and so on out to the world; the identity for None.
 pub fn group_frame(groups: &[SceneGroup], group: Option<usize>) -> DAffine3 {
-    let mut frame = DAffine3::IDENTITY;
-    let mut at = group;
-    // The loader refuses loops; the bound keeps a hand-made scene from looping.
-    for _ in 0..=groups.len() {
-        let Some(g) = at.and_then(|g| groups.get(g)) else {
-            break;
-        };
-        frame = g.placement.affine() * frame;
-        at = g.parent;
-    }
-    frame
+    group_chain(groups, group)
+        .into_iter()
+        .fold(DAffine3::IDENTITY, |frame, g| {
+            groups[g].placement.affine() * frame
+        })
 }

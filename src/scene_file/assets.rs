@@ -79,6 +79,15 @@ impl<'a> Assets<'a> {
     }
 }
 
+/// `rel`'s folder joined to `name`: how a file the scene names names its own files (an
+/// OBJ its MTL, an MTL its images, a glTF file its buffers and images).
+pub(super) fn beside(rel: &str, name: &str) -> String {
+    match Path::new(rel).parent() {
+        Some(dir) if !dir.as_os_str().is_empty() => dir.join(name).to_string_lossy().into_owned(),
+        _ => name.to_string(),
+    }
+}
+
 /// The text of the file at `path`, `what` (a scene file, a mesh file): a regular file of at
 /// most `max` bytes, in UTF-8.
 pub(super) fn read_text_file(path: &Path, max: u64, what: &str) -> Result<String, SceneError> {

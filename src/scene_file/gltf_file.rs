@@ -5,7 +5,7 @@
 //! scene's bounded file access, and checks every accessor's bytes and every index before it
 //! reads one, so a malformed or truncated file is refused with a message, never a panic.
 
-use super::assets::read_file;
+use super::assets::{beside, read_file};
 use super::validator::Validator;
 use crate::geometry::Mesh;
 use crate::limits;
@@ -96,14 +96,6 @@ pub(super) fn is_gltf(rel: &str) -> bool {
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase);
     matches!(ext.as_deref(), Some("gltf" | "glb"))
-}
-
-/// `rel`'s folder joined to `name`: how a glTF file names its buffers and images.
-pub(super) fn beside(rel: &str, name: &str) -> String {
-    match Path::new(rel).parent() {
-        Some(dir) if !dir.as_os_str().is_empty() => dir.join(name).to_string_lossy().into_owned(),
-        _ => name.to_string(),
-    }
 }
 
 /// The bytes of a `data:` URI (base64 only), or None when `uri` is not one.

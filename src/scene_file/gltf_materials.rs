@@ -3,7 +3,8 @@
 //! size, emission, normal maps, and transmission with its index of refraction as Fresnel
 //! glass. What has no counterpart is named among the file's unread parts.
 
-use super::gltf_file::{GltfFile, beside, data_uri, relative_uri};
+use super::assets::beside;
+use super::gltf_file::{GltfFile, data_uri, relative_uri};
 use super::textures::Images;
 use super::validator::Validator;
 use crate::appearance::{ImageTexture, Material, Relief, Texture, UvTransform};

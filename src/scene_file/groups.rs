@@ -7,7 +7,7 @@ use super::error::SceneError;
 use super::validator::{Item, P3, V3, Validator};
 use crate::limits;
 use crate::messages::{did_you_mean, quoted};
-use crate::scene::{ObjectPlacement, SceneGroup, group_frame};
+use crate::scene::{ObjectPlacement, SceneGroup, group_chain, group_frame};
 use glam::DAffine3;
 use serde::Deserialize;
 use toml::Spanned;
@@ -86,23 +86,8 @@ impl Validator<'_> {
         }
         // No group within itself (every loop has a first member to report), then every
         // chain of parents within the depth allowed.
-        let within_itself = |i: usize| {
-            let mut chain = groups[i].parent;
-            (0..groups.len()).any(|_| {
-                let Some(g) = chain else { return false };
-                chain = groups[g].parent;
-                g == i
-            })
-        };
-        let depth = |i: usize| {
-            let mut chain = groups[i].parent;
-            let mut depth = 1;
-            while let Some(g) = chain {
-                depth += 1;
-                chain = groups[g].parent;
-            }
-            depth
-        };
+        let within_itself = |i: usize| group_chain(&groups, groups[i].parent).contains(&i);
+        let depth = |i: usize| group_chain(&groups, Some(i)).len();
         let problem = (0..defs.len())
             .find(|&i| within_itself(i))
             .map(|i| {

@@ -1,7 +1,7 @@
 //! `[[meshes]]`: triangle meshes read from OBJ files, with their MTL materials mapped onto
 //! prism's. A file placed by many entries is read and built once (instancing).
 
-use super::assets::read_text_file;
+use super::assets::{beside, read_text_file};
 use super::error::SceneError;
 use super::gltf_file::{GltfCamera, GltfLight, is_gltf};
 use super::mtl::{MtlMaterial, parse_mtl};
@@ -119,14 +119,6 @@ fn asset_error(path: &Path, at: &Item, e: LineError) -> SceneError {
         path: path.to_path_buf(),
         line: e.line,
         message: format!("{} (read by {})", e.message, at.name),
-    }
-}
-
-/// `rel`'s folder joined to `name`: how an OBJ names its MTL, and an MTL its images.
-fn beside(rel: &str, name: &str) -> String {
-    match Path::new(rel).parent() {
-        Some(dir) if !dir.as_os_str().is_empty() => dir.join(name).to_string_lossy().into_owned(),
-        _ => name.to_string(),
     }
 }
 
