@@ -334,39 +334,49 @@ impl Bvh {
         let mut node = 0usize;
         loop {
             let n = &self.nodes[node];
-            let (mut mask, t_enter) = n.enter(&ray, t_max);
+            let (mask, t_enter) = n.enter(&ray, t_max);
             let t_enter = t_enter.to_array();
-            // The entered children, farthest first, so the nearest ends on top of the stack.
-            let mut entered = [(0.0f32, 0usize); 4];
-            let mut k = 0;
-            while mask != 0 {
-                let lane = mask.trailing_zeros() as usize;
-                mask &= mask - 1;
-                let mut j = k;
-                while j > 0 && entered[j - 1].0 < t_enter[lane] {
-                    entered[j] = entered[j - 1];
-                    j -= 1;
-                }
-                entered[j] = (t_enter[lane], lane);
-                k += 1;
-            }
-            let pending = |(t, lane): (f32, usize)| Pending {
+            let pending = |t: f32, lane: usize| Pending {
                 t_enter: t,
                 child: n.child[lane],
                 count: n.count[lane],
             };
-            // The nearest is taken at once, not pushed and popped: the same order.
-            let mut nearest = None;
-            if k > 0 {
-                for &entry in &entered[..k - 1] {
-                    stack.push(pending(entry));
+            // The nearest child entered is taken at once; the others are pushed farthest
+            // first, so the nearest of them ends on top (ties: the higher lane first).
+            let mut next = if mask == 0 {
+                None
+            } else if mask & (mask - 1) == 0 {
+                let lane = mask.trailing_zeros() as usize;
+                Some(pending(t_enter[lane], lane))
+            } else {
+                let mut entered = [(0.0f32, 0usize); 4];
+                let mut k = 0;
+                let mut mask = mask;
+                while mask != 0 {
+                    let lane = mask.trailing_zeros() as usize;
+                    mask &= mask - 1;
+                    let mut j = k;
+                    while j > 0 && entered[j - 1].0 < t_enter[lane] {
+                        entered[j] = entered[j - 1];
+                        j -= 1;
+                    }
+                    entered[j] = (t_enter[lane], lane);
+                    k += 1;
                 }
-                nearest = Some(pending(entered[k - 1]));
-            }
+                for &(t, lane) in &entered[..k - 1] {
+                    stack.push(pending(t, lane));
+                }
+                let (t, lane) = entered[k - 1];
+                Some(pending(t, lane))
+            };
             // Test leaves as they come, until an inner node is due.
             loop {
-                let Some(p) = nearest.take().or_else(|| stack.pop()) else {
-                    return t_max;
+                let p = match next.take() {
+                    Some(p) => p,
+                    None => match stack.pop() {
+                        Some(p) => p,
+                        None => return t_max,
+                    },
                 };
                 if p.t_enter > t_max {
                     continue;

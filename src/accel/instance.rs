@@ -85,7 +85,8 @@ impl Model {
         }
     }
 
-    #[inline]
+    // Not inlined: one copy of the traversal serves placed and unplaced instances.
+    #[inline(never)]
     fn intersect_after(&self, q: &RayQuery, t_min: f32, t_max: f32) -> Option<ShapeHit> {
         match self {
             Model::Mesh { bvh, groups, .. } => {
@@ -105,7 +106,7 @@ impl Model {
         }
     }
 
-    #[inline]
+    #[inline(never)]
     fn occludes(&self, q: &RayQuery, t_max: f32) -> bool {
         match self {
             Model::Mesh { bvh, groups, .. } => {
@@ -121,7 +122,7 @@ impl Model {
         }
     }
 
-    #[inline]
+    #[inline(never)]
     fn crossings(&self, q: &RayQuery, t_max: f32) -> u32 {
         match self {
             Model::Mesh { bvh, groups, .. } => {
@@ -176,6 +177,9 @@ impl Model {
 pub struct Instance {
     model: Arc<Model>,
     transform: Transform,
+    /// Whether `transform` is the identity: then rays, points and their error bounds are
+    /// the same in both spaces and need no carrying across (a mesh placed as modelled).
+    identity: bool,
     /// The box around it in the scene's space.
     bounds: Aabb,
 }
@@ -186,6 +190,7 @@ impl Instance {
         let bounds = transform.bounds_to_scene(&model.bounds());
         Self {
             model,
+            identity: transform.to_scene() == glam::Affine3A::IDENTITY,
             transform,
             bounds,
         }
@@ -211,18 +216,27 @@ impl Instance {
     /// The nearest hit with t in (t_min, t_max).
     #[inline]
     pub fn intersect_after(&self, q: &RayQuery, t_min: f32, t_max: f32) -> Option<ShapeHit> {
+        if self.identity {
+            return self.model.intersect_after(q, t_min, t_max);
+        }
         self.model.intersect_after(&self.local(q), t_min, t_max)
     }
 
     /// Whether anything of it lies on the segment (0, t_max).
     #[inline]
     pub fn occludes(&self, q: &RayQuery, t_max: f32) -> bool {
+        if self.identity {
+            return self.model.occludes(q, t_max);
+        }
         self.model.occludes(&self.local(q), t_max)
     }
 
     /// How many times the segment (0, t_max) crosses its surface.
     #[inline]
     pub fn crossings(&self, q: &RayQuery, t_max: f32) -> u32 {
+        if self.identity {
+            return self.model.crossings(q, t_max);
+        }
         self.model.crossings(&self.local(q), t_max)
     }
 
@@ -240,6 +254,9 @@ impl Instance {
     #[inline]
     pub fn surface(&self, q: &RayQuery, hit: &ShapeHit) -> SurfacePoint {
         let local = self.model.surface(|| self.local(q), hit);
+        if self.identity {
+            return local;
+        }
         let (point, error) = self.transform.point_to_scene(local.point, local.error);
         let normal = self.transform.normal_to_scene(local.normal);
         let shading = if local.shading == local.normal {
@@ -262,6 +279,9 @@ impl Instance {
         match (&*self.model, hit.detail) {
             (Model::Mesh { mesh, .. }, HitDetail::Mesh { triangle, b }) => {
                 let (point, error) = mesh.shadow_point(triangle, b)?;
+                if self.identity {
+                    return Some((point, error));
+                }
                 Some(self.transform.point_to_scene(point, error))
             }
             _ => None,
@@ -375,6 +395,45 @@ mod tests {
             "{}",
             groups.len()
         );
+    }
+
+    /// Placed by the identity, an instance skips carrying rays and points across spaces
+    /// (`identity`); it finds what carrying them finds, with an error bound no wider.
+    #[test]
+    fn an_unplaced_instance_finds_what_a_placed_one_does() {
+        let model = Arc::new(Model::mesh(unit_cube_mesh().subdivided()));
+        let identity = Transform::new(glam::Affine3A::IDENTITY).unwrap();
+        let fast = Instance::new(model.clone(), identity);
+        assert!(fast.identity);
+        let carried = Instance {
+            identity: false,
+            ..fast.clone()
+        };
+        let mut seed = 11u32;
+        let mut next = || {
+            seed = seed.wrapping_mul(1664525).wrapping_add(1013904223);
+            (seed >> 8) as f32 / (1 << 24) as f32
+        };
+        let mut hits = 0;
+        for _ in 0..500 {
+            let origin = Vec3::new(next() * 4.0 - 1.5, next() * 4.0 - 1.5, 3.0);
+            let target = Vec3::new(next(), next(), next());
+            let q = RayQuery::new(Ray::new(origin, target - origin));
+            let (a, b) = (
+                fast.intersect_after(&q, 0.0, f32::INFINITY),
+                carried.intersect_after(&q, 0.0, f32::INFINITY),
+            );
+            assert_eq!(a.map(|h| (h.t, h.detail)), b.map(|h| (h.t, h.detail)));
+            assert_eq!(fast.occludes(&q, 10.0), carried.occludes(&q, 10.0));
+            assert_eq!(fast.crossings(&q, 10.0), carried.crossings(&q, 10.0));
+            if let Some(hit) = a {
+                hits += 1;
+                let (s, t) = (fast.surface(&q, &hit), carried.surface(&q, &hit));
+                assert_eq!((s.point, s.normal), (t.point, t.normal));
+                assert!(s.error.cmple(t.error).all(), "{} {}", s.error, t.error);
+            }
+        }
+        assert!(hits > 100, "{hits}");
     }
 
     /// A sphere scaled by (2, 1, 1) is an ellipsoid: hit where x²/4 + y² + z² = 1, with
