@@ -434,6 +434,118 @@ fn punctual_lights_arrive_placed_and_scaled() {
     assert!((below - Vec3::ONE).abs().max_element() < 1e-3, "{below}");
 }
 
+/// lamp.glb: the cube, and a point light 3 above it.
+fn write_lamp(dir: &TempDir) {
+    let (positions, indices) = cube();
+    let (bytes, views, accessors) = geometry(&positions, &indices);
+    let doc = json!({
+        "asset": { "version": "2.0" },
+        "extensionsUsed": ["KHR_lights_punctual"],
+        "extensions": { "KHR_lights_punctual": { "lights": [
+            { "type": "point", "intensity": 100.0 }
+        ] } },
+        "scenes": [{ "nodes": [0, 1] }],
+        "nodes": [
+            { "mesh": 0 },
+            { "translation": [0.0, 3.0, 0.0], "extensions": { "KHR_lights_punctual": { "light": 0 } } }
+        ],
+        "meshes": [{ "primitives": [{ "attributes": { "POSITION": 0 }, "indices": 1 }] }],
+        "buffers": [{ "byteLength": bytes.len() }],
+        "bufferViews": views,
+        "accessors": accessors
+    });
+    std::fs::write(dir.path("lamp.glb"), glb(&doc, &bytes)).unwrap();
+}
+
+/// The point light's place in the world.
+fn lamp_position(scene: &Scene) -> DVec3 {
+    match scene.lights[0].kind {
+        LightKind::Point { position, .. } => scene.origin + position.as_dvec3(),
+        ref other => panic!("{other:?}"),
+    }
+}
+
+/// A glTF scene's lights move with their entry at once, as a load of the file with the
+/// new placement puts them, whether the entry or a group it is in is placed anew; an edit
+/// of a light's colour stays.
+#[test]
+fn a_gltf_scenes_lights_move_with_its_entry() {
+    let dir = TempDir::new();
+    write_lamp(&dir);
+    let entry = |translate: &str, group_turn: &str| {
+        format!(
+            "{CAMERA}[[groups]]\nname = \"table\"\nrotate = [0, {group_turn}, 0]\n\
+             [[meshes]]\npath = \"lamp.glb\"\ngroup = \"table\"\ntranslate = {translate}\n"
+        )
+    };
+    let position = lamp_position;
+    let loaded = load(&dir, &entry("[0, 0, 0]", "0"));
+    let mut scene = loaded.scene.clone();
+    assert!((position(&scene) - DVec3::new(0.0, 3.0, 0.0)).length() < 1e-5);
+    let moved = prism::scene::ObjectPlacement {
+        translate: DVec3::new(2.0, 0.0, -1.0),
+        ..prism::scene::ObjectPlacement::IDENTITY
+    };
+    loaded.place_object(&mut scene, 0, moved).unwrap();
+    // Saved, the entry's move is written, and the light that followed it is no lost edit.
+    let saved = prism::scene_file::saved_text(&loaded, &scene, &scene.camera).unwrap();
+    assert!(saved.skipped.is_empty(), "{:?}", saved.skipped);
+    assert!(
+        saved.text.contains("translate = [2.0, 0.0, -1.0]"),
+        "{}",
+        saved.text
+    );
+    // A colour edit of the file's light cannot be written, and the save says so.
+    scene.lights[0].color = Vec3::new(1.0, 0.5, 0.25);
+    let saved = prism::scene_file::saved_text(&loaded, &scene, &scene.camera).unwrap();
+    assert_eq!(saved.skipped.len(), 1, "{:?}", saved.skipped);
+    assert!(
+        saved.skipped[0].starts_with("light 0"),
+        "{:?}",
+        saved.skipped
+    );
+    loaded.place_object(&mut scene, 0, moved).unwrap();
+    let by_file = load(&dir, &entry("[2, 0, -1]", "0"));
+    assert!((position(&scene) - DVec3::new(2.0, 3.0, -1.0)).length() < 1e-5);
+    assert!((position(&scene) - position(&by_file.scene)).length() < 1e-9);
+    assert_eq!(scene.lights[0].color, Vec3::new(1.0, 0.5, 0.25));
+    // The group turned a quarter about y: (2, 3, −1) goes to (−1, 3, −2).
+    let turned = prism::scene::ObjectPlacement {
+        rotate: Vec3::new(0.0, 90.0, 0.0),
+        ..prism::scene::ObjectPlacement::IDENTITY
+    };
+    loaded.place_group(&mut scene, 0, turned).unwrap();
+    let by_file = load(&dir, &entry("[2, 0, -1]", "90"));
+    assert!((position(&scene) - DVec3::new(-1.0, 3.0, -2.0)).length() < 1e-5);
+    assert!((position(&scene) - position(&by_file.scene)).length() < 1e-9);
+    assert_eq!(scene.lights[0].color, Vec3::new(1.0, 0.5, 0.25));
+}
+
+/// An animation's frames read a glTF file once: with the file gone after the first frame,
+/// the next frames still place its triangles and lights where their keys say.
+#[test]
+fn an_animation_reads_a_gltf_file_once() {
+    let dir = TempDir::new();
+    write_lamp(&dir);
+    let text = format!(
+        "{CAMERA}[[meshes]]\nname = \"lamp\"\npath = \"lamp.glb\"\n\
+         [animation]\nframes = 3\n\
+         [[animation.track]]\ntarget = \"lamp\"\nfield = \"translate\"\ninterpolation = \"linear\"\n\
+         keys = [{{ frame = 0, value = [0, 0, 0] }}, {{ frame = 2, value = [4, 0, 0] }}]\n"
+    );
+    let path = dir.write("scene.toml", &text);
+    let frames = prism::scene_file::SceneFrames::load(&path).unwrap();
+    let first = frames.frame(0).unwrap();
+    std::fs::remove_file(dir.path("lamp.glb")).unwrap();
+    let last = frames.frame(2).unwrap();
+    assert_eq!(last.objects.len(), first.objects.len());
+    let light_x = |scene: &Scene| lamp_position(scene).x;
+    assert!((light_x(&first) - 0.0).abs() < 1e-6);
+    assert!((light_x(&last) - 4.0).abs() < 1e-6);
+    // Without the cache, the file is read again, and it is gone.
+    assert!(load_scene_file(&path).result.is_err());
+}
+
 /// Every malformed file is refused with the entry and the file named, and what is wrong.
 #[test]
 fn malformed_files_are_refused_with_a_message() {

@@ -6,6 +6,7 @@ use super::camera::CameraDef;
 use super::entry_def::EntryDef;
 use super::entry_def::entry_label;
 use super::error::SceneError;
+use super::gltf_scene::GltfLight;
 use super::groups::GroupDef;
 use super::kinds::object_kinds;
 use super::lights::LightDef;
@@ -36,6 +37,9 @@ pub struct ObjectOrigin {
     pub material: Option<String>,
     /// What the entry's file (a glTF scene) holds that prism does not read, in words.
     pub unread: Vec<String>,
+    /// The lights the entry's file (a glTF scene) brings, each by its index in the scene's
+    /// lights, as the file places them: placing the entry anew places them anew.
+    pub(super) file_lights: Vec<(usize, GltfLight)>,
 }
 
 /// The whole file as parsed: the scene-wide tables, then one array of tables per kind of
@@ -146,6 +150,7 @@ impl Validator<'_> {
                 index: i,
                 material: d.material().map(str::to_string),
                 unread: Vec::new(),
+                file_lights: Vec::new(),
             });
             Ok(())
         };
@@ -193,7 +198,9 @@ impl Validator<'_> {
             };
             let placement = self.placement(&at, d)?;
             let entry = self.mesh_objects(&at, d, material, &mut mesh_files, &mut images)?;
+            let mut file_lights = Vec::new();
             for light in entry.lights {
+                file_lights.push((lights.len(), light.clone()));
                 lights.push(self.gltf_light(&at, light, &placement)?);
             }
             let mut unread = entry.unread.to_vec();
@@ -246,6 +253,7 @@ impl Validator<'_> {
                     index: i,
                     material: d.material.clone(),
                     unread: unread.clone(),
+                    file_lights: file_lights.clone(),
                 });
             }
         }

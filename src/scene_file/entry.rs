@@ -53,6 +53,9 @@ pub(crate) struct PlacedEntry {
     pub(crate) shapes: Vec<(usize, ShapeDesc)>,
     /// The placement, as the entry now writes it.
     pub(crate) placement: ObjectPlacement,
+    /// The lights the entry's file brings (a glTF scene's), placed anew with it, by their
+    /// index in the scene.
+    pub(crate) lights: Vec<(usize, Light)>,
 }
 
 /// Entries placed anew: objects' and lights'.
@@ -68,6 +71,8 @@ impl PlacedEntries {
     /// Puts the new shapes, placements and lights into `scene`. A light keeps what an edit
     /// may have changed of it other than where it is (its colour, intensity and cone).
     pub(crate) fn apply(self, scene: &mut Scene) {
+        let entry_lights = self.objects.iter().flat_map(|e| e.lights.iter().cloned());
+        let lights: Vec<(usize, Light)> = entry_lights.chain(self.lights).collect();
         for entry in self.objects {
             for (i, mut shape) in entry.shapes {
                 let o = &mut scene.objects[i];
@@ -78,9 +83,10 @@ impl PlacedEntries {
                 o.placement = entry.placement;
             }
         }
-        for (i, light) in self.lights {
-            let l = &mut scene.lights[i];
-            *l = l.placed_as(&light);
+        for (i, light) in lights {
+            if let Some(l) = scene.lights.get_mut(i) {
+                *l = l.placed_as(&light);
+            }
         }
     }
 }
@@ -206,6 +212,8 @@ impl LoadedScene {
             return Ok(None);
         };
         let (table, index) = (origin.table, origin.index);
+        // A glTF scene's lights, placed anew with its entry.
+        let mut lights = Vec::new();
         // The entry with the new placement, its span and its label; None if the file has
         // no such entry.
         macro_rules! entry {
@@ -263,6 +271,10 @@ impl LoadedScene {
                     .into_iter()
                     .map(|(j, mesh)| (j, ShapeDesc::Mesh { mesh, transform }))
                     .collect();
+                // A glTF scene's lights go where the entry's new placement puts them.
+                for (light, read) in &origin.file_lights {
+                    lights.push((*light, v.gltf_light(&at, read, &placed)?));
+                }
                 (shapes, placed.written())
             }};
         }
@@ -270,6 +282,7 @@ impl LoadedScene {
         Ok(Some(PlacedEntry {
             shapes,
             placement: written,
+            lights,
         }))
     }
 }

@@ -6,6 +6,7 @@
 //! reads one, so a malformed or truncated file is refused with a message, never a panic.
 
 use super::assets::{beside, read_file};
+use super::gltf_scene::{GltfCamera, GltfFile, GltfLight, GltfLightKind, GltfPart};
 use super::validator::Validator;
 use crate::geometry::Mesh;
 use crate::limits;
@@ -23,71 +24,16 @@ pub const MAX_GLTF_NODE_VISITS: usize = 1 << 20;
 /// How deep a glTF node tree may be.
 pub const MAX_GLTF_DEPTH: usize = 256;
 
-/// A glTF file read: its primitives placed, its lights and cameras, the document (for its materials) and
-/// its buffers (for the images they hold).
-pub(super) struct GltfFile {
-    pub(super) document: gltf::Document,
-    pub(super) buffers: Vec<Vec<u8>>,
-    /// Each primitive of each mesh node, in the file's frame.
-    pub(super) parts: Vec<GltfPart>,
-    /// Each light node's light, in the file's frame.
-    pub(super) lights: Vec<GltfLight>,
-    /// Each perspective camera node's view, in the file's frame.
-    pub(super) cameras: Vec<GltfCamera>,
-    /// What the file has that prism does not read, in words.
-    pub(super) unread: Vec<String>,
-}
-
-/// A perspective camera placed by its node (in the file's frame).
-#[derive(Clone, Debug)]
-pub(super) struct GltfCamera {
-    /// The camera's name, else its node's, if either has one.
-    pub(super) name: Option<String>,
-    /// Its index in the file's `cameras`.
-    pub(super) index: usize,
-    pub(super) eye: DVec3,
-    /// The node's −z.
-    pub(super) direction: DVec3,
-    /// The node's +y.
-    pub(super) up: DVec3,
-    /// The vertical field of view, in radians.
-    pub(super) yfov: f32,
-}
-
-/// One mesh primitive, placed by its node.
-pub(super) struct GltfPart {
-    /// Its node's name (or `nodes[i]`), and the primitive's number when the mesh has more.
-    pub(super) name: String,
-    pub(super) mesh: Arc<Mesh>,
-    /// Its material's index; None for glTF's default material.
-    pub(super) material: Option<usize>,
-}
-
-/// A `KHR_lights_punctual` light placed by its node (in the file's frame).
-pub(super) struct GltfLight {
-    pub(super) kind: GltfLightKind,
-    pub(super) color: Vec3,
-    /// Candela for a point or spot light, lux for a directional one.
-    pub(super) intensity: f32,
-    pub(super) position: DVec3,
-    /// Where it shines (the node's −z).
-    pub(super) direction: DVec3,
-}
-
-/// The kinds of `KHR_lights_punctual` light.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(super) enum GltfLightKind {
-    Point,
-    /// A cone, its half-angles in radians.
-    Spot {
-        inner: f32,
-        outer: f32,
-    },
-    Directional,
-}
-
 /// A problem with a glTF file, in words (the reader names the file and the entry).
 type Refusal = String;
+
+/// Why a glTF file's triangles are refused: too many with the scene's other meshes.
+pub(super) fn too_many_triangles() -> Refusal {
+    format!(
+        "its triangles take the scene's meshes past the {} they may have together",
+        limits::MAX_SCENE_TRIANGLES
+    )
+}
 
 /// Whether `rel` names a glTF file (by its extension).
 pub(super) fn is_gltf(rel: &str) -> bool {
@@ -572,12 +518,7 @@ impl NodeWalk<'_> {
         // No more corners than the triangles the scene may still take can use: a file's
         // small integers are not widened into more memory than that.
         let most = self.budget.saturating_mul(3).saturating_add(2);
-        let too_many = || {
-            format!(
-                "its triangles take the scene's meshes past the {} they may have together",
-                limits::MAX_SCENE_TRIANGLES
-            )
-        };
+        let too_many = too_many_triangles;
         if positions.count() > most || primitive.indices().is_some_and(|i| i.count() > most) {
             return Err(too_many());
         }

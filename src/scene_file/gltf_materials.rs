@@ -4,7 +4,8 @@
 //! glass. What has no counterpart is named among the file's unread parts.
 
 use super::assets::beside;
-use super::gltf_file::{GltfFile, data_uri, relative_uri};
+use super::gltf_file::{data_uri, relative_uri};
+use super::gltf_scene::GltfFile;
 use super::textures::Images;
 use super::validator::Validator;
 use crate::appearance::{ImageTexture, Material, Relief, Texture, UvTransform};

@@ -3,7 +3,7 @@
 
 use super::error::SceneError;
 use super::fixed_array::Fixed;
-use super::gltf_file::{GltfLight, GltfLightKind};
+use super::gltf_scene::{GltfLight, GltfLightKind};
 use super::placement::Placement;
 use super::validator::{Item, P3, V3, Validator};
 use crate::appearance::{AreaShape, Falloff, Light, LightKind, SpotCone};

@@ -3,7 +3,8 @@
 
 use super::assets::{beside, read_text_file};
 use super::error::SceneError;
-use super::gltf_file::{GltfCamera, GltfLight, is_gltf};
+use super::gltf_file::{is_gltf, too_many_triangles};
+use super::gltf_scene::{GltfCamera, GltfLight};
 use super::mtl::{MtlMaterial, parse_mtl};
 use super::obj::{LineError, parse_obj};
 use super::placement::Placement;
@@ -229,7 +230,25 @@ impl Validator<'_> {
                 ),
             )
         };
-        let file = self.read_gltf(rel, smooth, triangles).map_err(fail)?;
+        // An animation's frames read the file once (its triangles still count against
+        // what the scene may hold with the frame's other meshes).
+        let key = (path.clone(), smooth);
+        let file = match self.assets.cache().and_then(|cache| cache.gltf(&key)) {
+            Some(file) => {
+                let total: usize = file.parts.iter().map(|p| p.mesh.triangle_count()).sum();
+                if total > limits::MAX_SCENE_TRIANGLES.saturating_sub(triangles) {
+                    return Err(fail(too_many_triangles()));
+                }
+                file
+            }
+            None => {
+                let file = Arc::new(self.read_gltf(rel, smooth, triangles).map_err(fail)?);
+                if let Some(cache) = self.assets.cache() {
+                    cache.keep_gltf(key, file.clone());
+                }
+                file
+            }
+        };
         let mut unread = file.unread.clone();
         let mut materials = self
             .gltf_materials(rel, &file, images, &mut unread)
@@ -243,12 +262,12 @@ impl Validator<'_> {
         });
         let (parts, materials) = file
             .parts
-            .into_iter()
+            .iter()
             .map(|p| {
                 let part = LoadedPart {
-                    name: Some(p.name),
+                    name: Some(p.name.clone()),
                     line: 0,
-                    mesh: p.mesh,
+                    mesh: p.mesh.clone(),
                 };
                 (part, materials[p.material.unwrap_or(default)].clone())
             })
@@ -257,8 +276,8 @@ impl Validator<'_> {
             parts,
             libraries: Vec::new(),
             materials: Some(materials),
-            lights: file.lights,
-            cameras: file.cameras,
+            lights: file.lights.clone(),
+            cameras: file.cameras.clone(),
             unread: unread.iter().map(|u| shown_within(u, 300)).collect(),
         })
     }

@@ -2,6 +2,7 @@
 //! of an animation is its file with the tracks' values written in, validated again, and its
 //! meshes and images are the same files. Read once, they are shared by every frame.
 
+use super::gltf_scene::GltfFile;
 use crate::appearance::ImageTexture;
 use crate::geometry::Mesh;
 use std::collections::HashMap;
@@ -21,6 +22,8 @@ pub(super) struct ReadMesh {
 pub struct ReadCache {
     /// By the file's path and whether it was read smooth.
     meshes: Mutex<HashMap<(PathBuf, bool), ReadMesh>>,
+    /// glTF files, by path and whether read smooth.
+    gltf: Mutex<HashMap<(PathBuf, bool), Arc<GltfFile>>>,
     images: Mutex<HashMap<PathBuf, Arc<ImageTexture>>>,
 }
 
@@ -34,6 +37,18 @@ impl ReadCache {
     pub(super) fn keep_mesh(&self, key: (PathBuf, bool), mesh: ReadMesh) {
         if let Ok(mut meshes) = self.meshes.lock() {
             meshes.insert(key, mesh);
+        }
+    }
+
+    /// glTF file `key`, if read before.
+    pub(super) fn gltf(&self, key: &(PathBuf, bool)) -> Option<Arc<GltfFile>> {
+        self.gltf.lock().ok()?.get(key).cloned()
+    }
+
+    /// Keeps glTF file `key` as read.
+    pub(super) fn keep_gltf(&self, key: (PathBuf, bool), file: Arc<GltfFile>) {
+        if let Ok(mut files) = self.gltf.lock() {
+            files.insert(key, file);
         }
     }
 

@@ -11,7 +11,7 @@ use crate::camera::Camera;
 use crate::messages::shortest;
 use crate::scene::{ObjectPlacement, Scene, ShapeDesc};
 use glam::{DVec3, Vec3};
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap};
 use thiserror::Error;
 use toml_edit::{Array, DocumentMut, Item, Table, TableLike, Value};
 
@@ -89,9 +89,12 @@ pub fn saved_text(
         Some(Item::Value(Value::Array(a))) => a.len(),
         _ => 0,
     };
+    let moved_with_entries = file_lights_placed(loaded, edited);
     for (i, (was, now)) in before.lights.iter().zip(&edited.lights).enumerate() {
         if i >= written_lights {
-            if was != now {
+            // Moved with its entry (which is written) and otherwise as the file has it.
+            let followed = moved_with_entries.get(&i).map(|at| was.placed_as(at));
+            if was != now && followed.as_ref() != Some(now) {
                 skipped.push(format!(
                     "light {i}: it comes from a glTF file, which prism does not write"
                 ));
@@ -194,6 +197,26 @@ fn write_fog(doc: &mut DocumentMut, fog: &Fog) -> Result<(), SaveError> {
         }
     }
     Ok(())
+}
+
+/// Where `edited`'s entries now place the lights their glTF files bring, by the lights'
+/// index in the scene.
+fn file_lights_placed(loaded: &LoadedScene, edited: &Scene) -> HashMap<usize, Light> {
+    let mut placed = HashMap::new();
+    let mut entries = Vec::new();
+    for (i, origin) in loaded.origins.iter().enumerate() {
+        if origin.file_lights.is_empty() || entries.contains(&(origin.table, origin.index)) {
+            continue;
+        }
+        entries.push((origin.table, origin.index));
+        let Some(object) = edited.objects.get(i) else {
+            continue;
+        };
+        if let Ok(Some(entries)) = loaded.placed_entries(edited, &[(i, object.placement)], &[]) {
+            placed.extend(entries.objects.into_iter().flat_map(|e| e.lights));
+        }
+    }
+    placed
 }
 
 /// The fields of light `was` that differ in `now`, written into its `[[lights]]` entry.
