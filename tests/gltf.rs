@@ -434,7 +434,7 @@ fn punctual_lights_arrive_placed_and_scaled() {
     assert!((below - Vec3::ONE).abs().max_element() < 1e-3, "{below}");
 }
 
-/// lamp.glb: the cube, and a point light 3 above it.
+/// lamp.glb: the cube (node "box"), and a point light 3 above it (node "bulb").
 fn write_lamp(dir: &TempDir) {
     let (positions, indices) = cube();
     let (bytes, views, accessors) = geometry(&positions, &indices);
@@ -446,8 +446,9 @@ fn write_lamp(dir: &TempDir) {
         ] } },
         "scenes": [{ "nodes": [0, 1] }],
         "nodes": [
-            { "mesh": 0 },
-            { "translation": [0.0, 3.0, 0.0], "extensions": { "KHR_lights_punctual": { "light": 0 } } }
+            { "name": "box", "mesh": 0 },
+            { "name": "bulb", "translation": [0.0, 3.0, 0.0],
+              "extensions": { "KHR_lights_punctual": { "light": 0 } } }
         ],
         "meshes": [{ "primitives": [{ "attributes": { "POSITION": 0 }, "indices": 1 }] }],
         "buffers": [{ "byteLength": bytes.len() }],
@@ -544,6 +545,71 @@ fn an_animation_reads_a_gltf_file_once() {
     assert!((light_x(&last) - 4.0).abs() < 1e-6);
     // Without the cache, the file is read again, and it is gone.
     assert!(load_scene_file(&path).result.is_err());
+}
+
+/// An entry's `nodes` pose a glTF file's nodes anew, by name or as `nodes[i]`: each part
+/// of the pose given replaces that part of the node's own transform, the others kept, and
+/// what the node holds (triangles, a light) follows.
+/// Two entries of one file posed apart each get their own pose. A pose of a node the file
+/// lacks, or on an OBJ file, or with a bad value, is refused at its entry.
+#[test]
+fn nodes_are_posed_by_the_entry() {
+    let dir = TempDir::new();
+    write_lamp(&dir);
+    let text = format!(
+        "{CAMERA}[[meshes]]\npath = \"lamp.glb\"\n\
+         [meshes.nodes.bulb]\ntranslate = [1, 5, 0]\n\
+         [meshes.nodes.\"nodes[0]\"]\nscale = 2\nrotate = [0, 45, 0]\n\
+         [[meshes]]\npath = \"lamp.glb\"\n[meshes.nodes.bulb]\nrotate = [0, 90, 0]\n"
+    );
+    let loaded = load(&dir, &text);
+    let scene = &loaded.scene;
+    assert!((lamp_position(scene) - DVec3::new(1.0, 5.0, 0.0)).length() < 1e-5);
+    // The second entry's light, only turned, keeps the file's place.
+    let LightKind::Point { position, .. } = scene.lights[1].kind else {
+        panic!()
+    };
+    assert!((scene.origin + position.as_dvec3() - DVec3::new(0.0, 3.0, 0.0)).length() < 1e-5);
+    let extent = |i: usize| match &scene.objects[i].shape {
+        ShapeDesc::Mesh { mesh, .. } => {
+            let b = mesh.bounds();
+            (b.max.x - b.min.x, b.max.y - b.min.y)
+        }
+        other => panic!("{other:?}"),
+    };
+    // The posed cube: twice the size, turned 45° about y (its width across x is 2√2).
+    let (wide, tall) = extent(0);
+    assert!(
+        (wide - 2.0 * std::f32::consts::SQRT_2).abs() < 1e-4,
+        "{wide}"
+    );
+    assert!((tall - 2.0).abs() < 1e-5, "{tall}");
+    assert_eq!(extent(1), (1.0, 1.0));
+
+    let refused = |text: String| {
+        let path = dir.write("bad.toml", &text);
+        load_scene_file(&path).result.unwrap_err().to_string()
+    };
+    let e = refused(format!(
+        "{CAMERA}[[meshes]]\npath = \"lamp.glb\"\n[meshes.nodes.blub]\ntranslate = [1, 0, 0]\n"
+    ));
+    assert!(e.contains("no node named \"blub\""), "{e}");
+    assert!(e.contains("did you mean \"bulb\""), "{e}");
+    assert!(e.contains("bad.toml:"), "{e}");
+    let obj = "o cube\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    dir.write("tri.obj", obj);
+    let e = refused(format!(
+        "{CAMERA}[[meshes]]\npath = \"tri.obj\"\n[meshes.nodes.bulb]\nscale = 2\n"
+    ));
+    assert!(e.contains("an OBJ file has none"), "{e}");
+    let e = refused(format!(
+        "{CAMERA}[[meshes]]\npath = \"lamp.glb\"\n[meshes.nodes.bulb]\nscale = 0\n"
+    ));
+    assert!(e.contains("node \"bulb\"") && e.contains("`scale`"), "{e}");
+    let e = refused(format!(
+        "{CAMERA}[[meshes]]\npath = \"lamp.glb\"\n[meshes.nodes.bulb]\nmove = 2\n"
+    ));
+    assert!(e.contains("move"), "{e}");
 }
 
 /// Every malformed file is refused with the entry and the file named, and what is wrong.

@@ -6,7 +6,7 @@
 //! reads one, so a malformed or truncated file is refused with a message, never a panic.
 
 use super::assets::{beside, read_file};
-use super::gltf_scene::{GltfCamera, GltfFile, GltfLight, GltfLightKind, GltfPart};
+use super::gltf_scene::{GltfCamera, GltfFile, GltfLight, GltfLightKind, GltfPart, NodePose};
 use super::validator::Validator;
 use crate::geometry::Mesh;
 use crate::limits;
@@ -284,6 +284,7 @@ impl Validator<'_> {
         rel: &str,
         smooth: bool,
         triangles: usize,
+        poses: &[NodePose],
     ) -> Result<GltfFile, Refusal> {
         let bytes = self.read_gltf_bytes(rel)?;
         let gltf = parse_gltf(&bytes)?;
@@ -324,12 +325,16 @@ impl Validator<'_> {
             parts: Vec::new(),
             lights: Vec::new(),
             unread: &mut unread,
+            poses,
+            posed: vec![Vec::new(); poses.len()],
+            names: Vec::new(),
         };
         let mut path = Vec::new();
         for node in scene.nodes() {
             reader.node(&node, DMat4::IDENTITY, &mut path)?;
         }
         let (parts, lights, cameras) = (reader.parts, reader.lights, reader.cameras);
+        let (posed, names) = (reader.posed, reader.names);
         if document.animations().next().is_some() {
             unread.push("animations (the first frame's pose is not applied either)".into());
         }
@@ -346,6 +351,8 @@ impl Validator<'_> {
             lights,
             cameras,
             unread,
+            node_names: names,
+            posed_nodes: posed.iter().map(Vec::len).collect(),
         })
     }
 
@@ -407,6 +414,11 @@ struct NodeWalk<'a> {
     parts: Vec<GltfPart>,
     lights: Vec<GltfLight>,
     unread: &'a mut Vec<String>,
+    /// The entry's poses for nodes, and the nodes each one met.
+    poses: &'a [NodePose],
+    posed: Vec<Vec<usize>>,
+    /// The names of the nodes met, as poses may name them.
+    names: Vec<String>,
 }
 
 impl NodeWalk<'_> {
@@ -436,7 +448,22 @@ impl NodeWalk<'_> {
                 "its scene places more than {MAX_GLTF_NODE_VISITS} nodes"
             ));
         }
-        let local = DMat4::from_cols_array_2d(&node.transform().matrix().map(|c| c.map(f64::from)));
+        let by_index = format!("nodes[{}]", node.index());
+        if let Some(name) = node.name()
+            && !self.names.iter().any(|n| n == name)
+        {
+            self.names.push(name.to_string());
+        }
+        let mut local =
+            DMat4::from_cols_array_2d(&node.transform().matrix().map(|c| c.map(f64::from)));
+        for (pose, met) in self.poses.iter().zip(&mut self.posed) {
+            if pose.node == by_index || node.name() == Some(pose.node.as_str()) {
+                local = pose.local(node.transform().decomposed());
+                if !met.contains(&node.index()) {
+                    met.push(node.index());
+                }
+            }
+        }
         let frame = parent * local;
         if !frame.is_finite() {
             return Err(format!("{name}'s transform is not finite"));

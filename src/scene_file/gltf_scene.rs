@@ -1,9 +1,10 @@
 //! A glTF file as read (gltf_file.rs reads it): its primitives placed in the file's frame,
-//! its lights and cameras, and the document and buffers its materials come from. Apart from
-//! the reader, so that the read cache can keep one without depending on how it is read.
+//! its lights and cameras, and the document and buffers its materials come from; and the
+//! poses an entry gives its nodes, which key a reading. Apart from the reader, so that the
+//! read cache can keep one without depending on how it is read.
 
 use crate::geometry::Mesh;
-use glam::{DVec3, Vec3};
+use glam::{DMat3, DMat4, DVec3, Vec3};
 use std::sync::Arc;
 
 /// A glTF file read: its primitives placed, its lights and cameras, the document (for its materials) and
@@ -20,6 +21,10 @@ pub(super) struct GltfFile {
     pub(super) cameras: Vec<GltfCamera>,
     /// What the file has that prism does not read, in words.
     pub(super) unread: Vec<String>,
+    /// The names of the nodes its scene places, for messages.
+    pub(super) node_names: Vec<String>,
+    /// For each of the entry's node poses, how many nodes it named.
+    pub(super) posed_nodes: Vec<usize>,
 }
 
 /// A perspective camera placed by its node (in the file's frame).
@@ -70,4 +75,65 @@ pub(super) enum GltfLightKind {
         outer: f32,
     },
     Directional,
+}
+
+/// A node's pose as a mesh entry's `nodes` gives it: the node's name (or `nodes[i]`, its
+/// index in the file), and the parts of its transform (in its parent's frame) given in
+/// place of the file's; a part not given keeps the file's.
+#[derive(Clone, Debug)]
+pub(super) struct NodePose {
+    pub(super) node: String,
+    pub(super) translate: Option<DVec3>,
+    /// The turn, as a `rotate` gives it.
+    pub(super) rotation: Option<DMat3>,
+    pub(super) scale: Option<DVec3>,
+}
+
+impl NodePose {
+    /// What tells two poses apart: the node and the values' bits (poses key the files
+    /// read, so equal means the same reading).
+    fn bits(&self) -> (&str, Vec<u64>) {
+        let mut bits = Vec::new();
+        for part in [
+            self.translate.map(|v| v.to_array().to_vec()),
+            self.rotation.map(|m| m.to_cols_array().to_vec()),
+            self.scale.map(|v| v.to_array().to_vec()),
+        ] {
+            match part {
+                Some(values) => bits.extend(values.into_iter().map(f64::to_bits)),
+                // Apart from any value's bits: a part not given.
+                None => bits.push(u64::MAX),
+            }
+        }
+        (&self.node, bits)
+    }
+
+    /// The node's transform in its parent's frame: `translation`, `rotation` (x, y, z, w)
+    /// and `scale` (the file's, decomposed) with the parts this pose gives put in.
+    pub(super) fn local(
+        &self,
+        (translation, rotation, scale): ([f32; 3], [f32; 4], [f32; 3]),
+    ) -> DMat4 {
+        let file = |v: [f32; 3]| DVec3::from_array(v.map(f64::from));
+        let turn = self.rotation.unwrap_or_else(|| {
+            DMat3::from_quat(glam::DQuat::from_array(rotation.map(f64::from)).normalize())
+        });
+        let linear = turn * DMat3::from_diagonal(self.scale.unwrap_or_else(|| file(scale)));
+        let translation = self.translate.unwrap_or_else(|| file(translation));
+        DMat4::from(glam::DAffine3::from_mat3_translation(linear, translation))
+    }
+}
+
+impl PartialEq for NodePose {
+    fn eq(&self, other: &Self) -> bool {
+        self.bits() == other.bits()
+    }
+}
+
+impl Eq for NodePose {}
+
+impl std::hash::Hash for NodePose {
+    fn hash<H: std::hash::Hasher>(&self, state: &mut H) {
+        self.bits().hash(state);
+    }
 }

@@ -4,7 +4,7 @@
 use super::assets::{beside, read_text_file};
 use super::error::SceneError;
 use super::gltf_file::{is_gltf, too_many_triangles};
-use super::gltf_scene::{GltfCamera, GltfLight};
+use super::gltf_scene::{GltfCamera, GltfLight, NodePose};
 use super::mtl::{MtlMaterial, parse_mtl};
 use super::obj::{LineError, parse_obj};
 use super::placement::Placement;
@@ -14,10 +14,10 @@ use super::validator::{Item, P3, V3, Validator};
 use crate::appearance::{Material, Relief, Texture, UvTransform};
 use crate::geometry::{Aabb, Mesh, Transform};
 use crate::limits;
-use crate::messages::{quoted, shown_within};
+use crate::messages::{did_you_mean, quoted, shown_within};
 use glam::{DVec3, Vec3};
 use serde::Deserialize;
-use std::collections::HashMap;
+use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -37,13 +37,25 @@ pub(super) struct MeshDef {
     pub(super) rotate: Option<V3>,
     /// A number or [sx, sy, sz].
     pub(super) scale: Option<toml::Value>,
+    /// A glTF file's nodes posed anew, by name (or `nodes[i]`).
+    pub(super) nodes: Option<BTreeMap<String, toml::Spanned<NodeDef>>>,
+}
+
+/// A glTF node's transform in its parent's frame, in place of the file's.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct NodeDef {
+    translate: Option<P3>,
+    rotate: Option<V3>,
+    /// A number or [sx, sy, sz].
+    scale: Option<toml::Value>,
 }
 
 /// The mesh files one scene reads, each once.
 #[derive(Default)]
 pub(super) struct MeshFiles {
-    /// By the file's path and whether it was asked for smooth.
-    loaded: HashMap<(PathBuf, bool), LoadedFile>,
+    /// By the file's path, whether it was asked for smooth, and a glTF file's node poses.
+    loaded: HashMap<(PathBuf, bool, Vec<NodePose>), LoadedFile>,
     /// Triangles in all the files read so far.
     triangles: usize,
 }
@@ -136,10 +148,11 @@ impl Validator<'_> {
         images: &mut Images,
     ) -> Result<MeshEntry<'f>, SceneError> {
         let smooth = d.smooth.unwrap_or(true);
-        let key = (self.locate(&d.path), smooth);
+        let poses = self.node_poses(at, d)?;
+        let key = (self.locate(&d.path), smooth, poses.clone());
         if !files.loaded.contains_key(&key) {
             let file = if is_gltf(&d.path) {
-                self.gltf_mesh(at, &d.path, smooth, files.triangles, images)?
+                self.gltf_mesh(at, &d.path, smooth, files.triangles, images, &poses)?
             } else {
                 self.read_mesh(at, &d.path, smooth, files.triangles)?
             };
@@ -207,8 +220,42 @@ impl Validator<'_> {
             .ok_or_else(|| self.field_error(at, "scale", "the placement cannot be inverted"))
     }
 
-    /// Reads glTF file `rel` (the scene's meshes hold `triangles` already): its primitives
-    /// as parts, with their materials mapped.
+    /// Entry `d`'s poses for its glTF file's nodes, checked (none for an OBJ file, which
+    /// has no nodes).
+    fn node_poses(&self, at: &Item, d: &MeshDef) -> Result<Vec<NodePose>, SceneError> {
+        let Some(nodes) = &d.nodes else {
+            return Ok(Vec::new());
+        };
+        if !is_gltf(&d.path) {
+            return Err(self.field_error(
+                at,
+                "nodes",
+                "`nodes` poses a glTF file's nodes; an OBJ file has none",
+            ));
+        }
+        nodes
+            .iter()
+            .map(|(node, def)| {
+                let name = format!("{} node {}", at.name, quoted(node));
+                let item = Item {
+                    span: def.span(),
+                    name: &name,
+                };
+                let def = def.get_ref();
+                let placement =
+                    self.own_placement(&item, (def.translate, def.rotate, def.scale.as_ref()))?;
+                Ok(NodePose {
+                    node: node.clone(),
+                    translate: def.translate.map(|_| placement.translate),
+                    rotation: def.rotate.map(|_| placement.rotation()),
+                    scale: def.scale.as_ref().map(|_| placement.scale),
+                })
+            })
+            .collect()
+    }
+
+    /// Reads glTF file `rel` (the scene's meshes hold `triangles` already) with its nodes
+    /// posed by `poses`: its primitives as parts, with their materials mapped.
     fn gltf_mesh(
         &self,
         at: &Item,
@@ -216,6 +263,7 @@ impl Validator<'_> {
         smooth: bool,
         triangles: usize,
         images: &mut Images,
+        poses: &[NodePose],
     ) -> Result<LoadedFile, SceneError> {
         let path = self.locate(rel);
         // The reasons may quote the file's own text (its names, the parser's excerpts).
@@ -232,7 +280,7 @@ impl Validator<'_> {
         };
         // An animation's frames read the file once (its triangles still count against
         // what the scene may hold with the frame's other meshes).
-        let key = (path.clone(), smooth);
+        let key = (path.clone(), smooth, poses.to_vec());
         let file = match self.assets.cache().and_then(|cache| cache.gltf(&key)) {
             Some(file) => {
                 let total: usize = file.parts.iter().map(|p| p.mesh.triangle_count()).sum();
@@ -242,13 +290,35 @@ impl Validator<'_> {
                 file
             }
             None => {
-                let file = Arc::new(self.read_gltf(rel, smooth, triangles).map_err(fail)?);
+                let file = Arc::new(
+                    self.read_gltf(rel, smooth, triangles, poses)
+                        .map_err(fail)?,
+                );
                 if let Some(cache) = self.assets.cache() {
                     cache.keep_gltf(key, file.clone());
                 }
                 file
             }
         };
+        // Each pose names one node of the file's scene.
+        for (pose, &met) in poses.iter().zip(&file.posed_nodes) {
+            let problem = match met {
+                1 => continue,
+                0 => format!(
+                    "glTF file {} has no node named {} in its scene{}",
+                    quoted(&path.display().to_string()),
+                    quoted(&pose.node),
+                    did_you_mean(&pose.node, file.node_names.iter().map(String::as_str))
+                ),
+                n => format!(
+                    "{} names {n} nodes of glTF file {}; name one as `nodes[i]`, its index \
+                     in the file",
+                    quoted(&pose.node),
+                    quoted(&path.display().to_string())
+                ),
+            };
+            return Err(self.field_error(at, "nodes", problem));
+        }
         let mut unread = file.unread.clone();
         let mut materials = self
             .gltf_materials(rel, &file, images, &mut unread)

@@ -2,7 +2,7 @@
 //! of an animation is its file with the tracks' values written in, validated again, and its
 //! meshes and images are the same files. Read once, they are shared by every frame.
 
-use super::gltf_scene::GltfFile;
+use super::gltf_scene::{GltfFile, NodePose};
 use crate::appearance::ImageTexture;
 use crate::geometry::Mesh;
 use std::collections::HashMap;
@@ -17,13 +17,16 @@ pub(super) struct ReadMesh {
     pub(super) libraries: Vec<(String, usize)>,
 }
 
+/// A glTF file as an entry reads it: its path, whether smooth, and its nodes' poses.
+pub(super) type GltfKey = (PathBuf, bool, Vec<NodePose>);
+
 /// The meshes and images validations of one scene have read, by path.
 #[derive(Debug, Default)]
 pub struct ReadCache {
     /// By the file's path and whether it was read smooth.
     meshes: Mutex<HashMap<(PathBuf, bool), ReadMesh>>,
-    /// glTF files, by path and whether read smooth.
-    gltf: Mutex<HashMap<(PathBuf, bool), Arc<GltfFile>>>,
+    /// glTF files, by path, whether read smooth, and the entry's node poses.
+    gltf: Mutex<HashMap<GltfKey, Arc<GltfFile>>>,
     images: Mutex<HashMap<PathBuf, Arc<ImageTexture>>>,
 }
 
@@ -41,12 +44,12 @@ impl ReadCache {
     }
 
     /// glTF file `key`, if read before.
-    pub(super) fn gltf(&self, key: &(PathBuf, bool)) -> Option<Arc<GltfFile>> {
+    pub(super) fn gltf(&self, key: &GltfKey) -> Option<Arc<GltfFile>> {
         self.gltf.lock().ok()?.get(key).cloned()
     }
 
     /// Keeps glTF file `key` as read.
-    pub(super) fn keep_gltf(&self, key: (PathBuf, bool), file: Arc<GltfFile>) {
+    pub(super) fn keep_gltf(&self, key: GltfKey, file: Arc<GltfFile>) {
         if let Ok(mut files) = self.gltf.lock() {
             files.insert(key, file);
         }
