@@ -612,6 +612,51 @@ fn nodes_are_posed_by_the_entry() {
     assert!(e.contains("move"), "{e}");
 }
 
+/// A pose by a name two nodes share is refused, as it could mean either; `nodes[i]` poses
+/// one of them alone.
+#[test]
+fn a_shared_node_name_is_posed_by_index() {
+    let dir = TempDir::new();
+    let (positions, indices) = cube();
+    let (bytes, views, accessors) = geometry(&positions, &indices);
+    let doc = json!({
+        "asset": { "version": "2.0" },
+        "scenes": [{ "nodes": [0, 1] }],
+        "nodes": [
+            { "name": "twin", "mesh": 0 },
+            { "name": "twin", "mesh": 0, "translation": [2.0, 0.0, 0.0] }
+        ],
+        "meshes": [{ "primitives": [{ "attributes": { "POSITION": 0 }, "indices": 1 }] }],
+        "buffers": [{ "byteLength": bytes.len() }],
+        "bufferViews": views,
+        "accessors": accessors
+    });
+    std::fs::write(dir.path("twins.glb"), glb(&doc, &bytes)).unwrap();
+    let entry = |pose: &str| format!("{CAMERA}[[meshes]]\npath = \"twins.glb\"\n{pose}");
+    let path = dir.write("shared.toml", &entry("[meshes.nodes.twin]\nscale = 2\n"));
+    let e = load_scene_file(&path).result.unwrap_err().to_string();
+    assert!(e.contains("names 2 nodes") && e.contains("nodes[i]"), "{e}");
+    let loaded = load(
+        &dir,
+        &entry("[meshes.nodes.\"nodes[1]\"]\ntranslate = [0, 0, 5]\n"),
+    );
+    let centres: Vec<glam::Vec3> = loaded
+        .scene
+        .objects
+        .iter()
+        .map(|o| match &o.shape {
+            ShapeDesc::Mesh { mesh, .. } => mesh.bounds().centroid(),
+            other => panic!("{other:?}"),
+        })
+        .collect();
+    assert_eq!(centres.len(), 2);
+    assert!((centres[0] - Vec3::ZERO).length() < 1e-6, "{centres:?}");
+    assert!(
+        (centres[1] - Vec3::new(0.0, 0.0, 5.0)).length() < 1e-6,
+        "{centres:?}"
+    );
+}
+
 /// Every malformed file is refused with the entry and the file named, and what is wrong.
 #[test]
 fn malformed_files_are_refused_with_a_message() {
