@@ -23,6 +23,7 @@ use crate::scene::{Scene, SceneObject, ShapeDesc};
 use serde::Deserialize;
 use std::collections::{BTreeMap, HashMap};
 use std::ops::Range;
+use std::sync::Arc;
 use toml::Spanned;
 
 /// The entry of a scene file that made an object.
@@ -39,7 +40,7 @@ pub struct ObjectOrigin {
     pub unread: Vec<String>,
     /// The lights the entry's file (a glTF scene) brings, each by its index in the scene's
     /// lights, as the file places them: placing the entry anew places them anew.
-    pub(super) file_lights: Vec<(usize, GltfLight)>,
+    pub(super) file_lights: Arc<[(usize, GltfLight)]>,
 }
 
 /// The whole file as parsed: the scene-wide tables, then one array of tables per kind of
@@ -150,7 +151,7 @@ impl Validator<'_> {
                 index: i,
                 material: d.material().map(str::to_string),
                 unread: Vec::new(),
-                file_lights: Vec::new(),
+                file_lights: Arc::from([]),
             });
             Ok(())
         };
@@ -203,6 +204,8 @@ impl Validator<'_> {
                 file_lights.push((lights.len(), light.clone()));
                 lights.push(self.gltf_light(&at, light, &placement)?);
             }
+            // Shared by the entry's parts.
+            let file_lights: Arc<[_]> = file_lights.into();
             let mut unread = entry.unread.to_vec();
             match &d.camera {
                 Some(_) if !super::gltf_file::is_gltf(&d.path) => {

@@ -272,7 +272,7 @@ impl LoadedScene {
                     .map(|(j, mesh)| (j, ShapeDesc::Mesh { mesh, transform }))
                     .collect();
                 // A glTF scene's lights go where the entry's new placement puts them.
-                for (light, read) in &origin.file_lights {
+                for (light, read) in origin.file_lights.iter() {
                     lights.push((*light, v.gltf_light(&at, read, &placed)?));
                 }
                 (shapes, placed.written())

@@ -327,14 +327,13 @@ impl Validator<'_> {
             unread: &mut unread,
             poses,
             posed: vec![Vec::new(); poses.len()],
-            names: Vec::new(),
         };
         let mut path = Vec::new();
         for node in scene.nodes() {
             reader.node(&node, DMat4::IDENTITY, &mut path)?;
         }
         let (parts, lights, cameras) = (reader.parts, reader.lights, reader.cameras);
-        let (posed, names) = (reader.posed, reader.names);
+        let posed = reader.posed;
         if document.animations().next().is_some() {
             unread.push("animations (the first frame's pose is not applied either)".into());
         }
@@ -351,7 +350,6 @@ impl Validator<'_> {
             lights,
             cameras,
             unread,
-            node_names: names,
             posed_nodes: posed.iter().map(Vec::len).collect(),
         })
     }
@@ -417,8 +415,6 @@ struct NodeWalk<'a> {
     /// The entry's poses for nodes, and the nodes each one met.
     poses: &'a [NodePose],
     posed: Vec<Vec<usize>>,
-    /// The names of the nodes met, as poses may name them.
-    names: Vec<String>,
 }
 
 impl NodeWalk<'_> {
@@ -448,16 +444,10 @@ impl NodeWalk<'_> {
                 "its scene places more than {MAX_GLTF_NODE_VISITS} nodes"
             ));
         }
-        let by_index = format!("nodes[{}]", node.index());
-        if let Some(name) = node.name()
-            && !self.names.iter().any(|n| n == name)
-        {
-            self.names.push(name.to_string());
-        }
         let mut local =
             DMat4::from_cols_array_2d(&node.transform().matrix().map(|c| c.map(f64::from)));
         for (pose, met) in self.poses.iter().zip(&mut self.posed) {
-            if pose.node == by_index || node.name() == Some(pose.node.as_str()) {
+            if pose.node.names(node) {
                 local = pose.local(node.transform().decomposed());
                 if !met.contains(&node.index()) {
                     met.push(node.index());

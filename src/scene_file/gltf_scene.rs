@@ -21,8 +21,6 @@ pub(super) struct GltfFile {
     pub(super) cameras: Vec<GltfCamera>,
     /// What the file has that prism does not read, in words.
     pub(super) unread: Vec<String>,
-    /// The names of the nodes its scene places, for messages.
-    pub(super) node_names: Vec<String>,
     /// For each of the entry's node poses, how many nodes it named.
     pub(super) posed_nodes: Vec<usize>,
 }
@@ -82,17 +80,52 @@ pub(super) enum GltfLightKind {
 /// place of the file's; a part not given keeps the file's.
 #[derive(Clone, Debug)]
 pub(super) struct NodePose {
-    pub(super) node: String,
+    pub(super) node: NodeRef,
     pub(super) translate: Option<DVec3>,
     /// The turn, as a `rotate` gives it.
     pub(super) rotation: Option<DMat3>,
     pub(super) scale: Option<DVec3>,
 }
 
+/// How a pose names its node: by the node's name, or by its index in the file (written
+/// `nodes[i]`, as messages show a node without a name).
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub(super) enum NodeRef {
+    Name(String),
+    Index(usize),
+}
+
+impl NodeRef {
+    /// The node `key` (a key of an entry's `nodes`) names.
+    pub(super) fn parse(key: &str) -> NodeRef {
+        key.strip_prefix("nodes[")
+            .and_then(|rest| rest.strip_suffix(']'))
+            .and_then(|digits| digits.parse().ok())
+            .map_or_else(|| NodeRef::Name(key.to_string()), NodeRef::Index)
+    }
+
+    /// Whether it names `node`.
+    pub(super) fn names(&self, node: &gltf::Node) -> bool {
+        match self {
+            NodeRef::Name(name) => node.name() == Some(name.as_str()),
+            NodeRef::Index(i) => node.index() == *i,
+        }
+    }
+}
+
+impl std::fmt::Display for NodeRef {
+    fn fmt(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        match self {
+            NodeRef::Name(name) => f.write_str(name),
+            NodeRef::Index(i) => write!(f, "nodes[{i}]"),
+        }
+    }
+}
+
 impl NodePose {
     /// What tells two poses apart: the node and the values' bits (poses key the files
     /// read, so equal means the same reading).
-    fn bits(&self) -> (&str, Vec<u64>) {
+    fn bits(&self) -> (&NodeRef, Vec<u64>) {
         let mut bits = Vec::new();
         for part in [
             self.translate.map(|v| v.to_array().to_vec()),
@@ -135,5 +168,21 @@ impl Eq for NodePose {}
 impl std::hash::Hash for NodePose {
     fn hash<H: std::hash::Hasher>(&self, state: &mut H) {
         self.bits().hash(state);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_pose_names_a_node_by_name_or_by_index() {
+        assert_eq!(NodeRef::parse("nodes[3]"), NodeRef::Index(3));
+        assert_eq!(NodeRef::parse("lamp"), NodeRef::Name("lamp".into()));
+        for written in ["nodes[x]", "nodes[]", "nodes[-1]", "nodes[3", "my nodes[3]"] {
+            assert_eq!(NodeRef::parse(written), NodeRef::Name(written.into()));
+        }
+        assert_eq!(NodeRef::Index(3).to_string(), "nodes[3]");
+        assert_eq!(NodeRef::parse("lamp").to_string(), "lamp");
     }
 }

@@ -4,7 +4,7 @@
 use super::assets::{beside, read_text_file};
 use super::error::SceneError;
 use super::gltf_file::{is_gltf, too_many_triangles};
-use super::gltf_scene::{GltfCamera, GltfLight, NodePose};
+use super::gltf_scene::{GltfCamera, GltfLight, NodePose, NodeRef};
 use super::mtl::{MtlMaterial, parse_mtl};
 use super::obj::{LineError, parse_obj};
 use super::placement::Placement;
@@ -245,7 +245,7 @@ impl Validator<'_> {
                 let placement =
                     self.own_placement(&item, (def.translate, def.rotate, def.scale.as_ref()))?;
                 Ok(NodePose {
-                    node: node.clone(),
+                    node: NodeRef::parse(node),
                     translate: def.translate.map(|_| placement.translate),
                     rotation: def.rotate.map(|_| placement.rotation()),
                     scale: def.scale.as_ref().map(|_| placement.scale),
@@ -307,13 +307,16 @@ impl Validator<'_> {
                 0 => format!(
                     "glTF file {} has no node named {} in its scene{}",
                     quoted(&path.display().to_string()),
-                    quoted(&pose.node),
-                    did_you_mean(&pose.node, file.node_names.iter().map(String::as_str))
+                    quoted(&pose.node.to_string()),
+                    did_you_mean(
+                        &pose.node.to_string(),
+                        file.document.nodes().filter_map(|n| n.name())
+                    )
                 ),
                 n => format!(
                     "{} names {n} nodes of glTF file {}; name one as `nodes[i]`, its index \
                      in the file",
-                    quoted(&pose.node),
+                    quoted(&pose.node.to_string()),
                     quoted(&path.display().to_string())
                 ),
             };

@@ -202,21 +202,19 @@ fn write_fog(doc: &mut DocumentMut, fog: &Fog) -> Result<(), SaveError> {
 /// Where `edited`'s entries now place the lights their glTF files bring, by the lights'
 /// index in the scene.
 fn file_lights_placed(loaded: &LoadedScene, edited: &Scene) -> HashMap<usize, Light> {
-    let mut placed = HashMap::new();
+    // One object of each entry whose file brings lights.
     let mut entries = Vec::new();
+    let mut objects = Vec::new();
     for (i, origin) in loaded.origins.iter().enumerate() {
-        if origin.file_lights.is_empty() || entries.contains(&(origin.table, origin.index)) {
-            continue;
-        }
-        entries.push((origin.table, origin.index));
-        let Some(object) = edited.objects.get(i) else {
-            continue;
-        };
-        if let Ok(Some(entries)) = loaded.placed_entries(edited, &[(i, object.placement)], &[]) {
-            placed.extend(entries.objects.into_iter().flat_map(|e| e.lights));
+        if !origin.file_lights.is_empty() && !entries.contains(&(origin.table, origin.index)) {
+            entries.push((origin.table, origin.index));
+            objects.extend(edited.objects.get(i).map(|o| (i, o.placement)));
         }
     }
-    placed
+    match loaded.placed_entries(edited, &objects, &[]) {
+        Ok(Some(placed)) => placed.objects.into_iter().flat_map(|e| e.lights).collect(),
+        _ => HashMap::new(),
+    }
 }
 
 /// The fields of light `was` that differ in `now`, written into its `[[lights]]` entry.
