@@ -137,6 +137,7 @@ fn light_buffers_draw_the_image_the_bvh_draws() {
             casts_shadow: true,
             placement: Default::default(),
             group: None,
+            node: None,
             name: format!("bead {i}"),
             shape: ShapeDesc::Sphere {
                 center: Vec3::new(
@@ -199,6 +200,7 @@ fn rays_inside_isolated_solids_find_what_the_bvh_finds() {
         casts_shadow: true,
         placement: Default::default(),
         group: None,
+        node: None,
         name: "bead".into(),
         shape: ShapeDesc::Sphere {
             center: Vec3::new(-9.0, -10.5, -60.0),

@@ -186,6 +186,7 @@ fn invisible(eta: f32) -> SceneObject {
         casts_shadow: true,
         placement: Default::default(),
         group: None,
+        node: None,
         name: "invisible".into(),
         shape: ShapeDesc::Sphere {
             center: Vec3::new(-2.0, -3.0, -70.0),

@@ -487,6 +487,7 @@ mod tests {
             casts_shadow: true,
             placement: Default::default(),
             group: None,
+            node: None,
             name: "s".into(),
             shape: ShapeDesc::Sphere {
                 center,

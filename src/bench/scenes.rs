@@ -30,6 +30,7 @@ pub fn sphere_field(n: usize) -> Scene {
                 casts_shadow: true,
                 placement: Default::default(),
                 group: None,
+                node: None,
                 name: format!("sphere {i}"),
                 shape: ShapeDesc::Sphere {
                     center,
@@ -48,6 +49,7 @@ pub fn sphere_field(n: usize) -> Scene {
         casts_shadow: true,
         placement: Default::default(),
         group: None,
+        node: None,
         name: "floor".into(),
         shape: ShapeDesc::Polygon {
             vertices: vec![

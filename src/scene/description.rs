@@ -87,6 +87,9 @@ pub struct SceneObject {
     pub placement: ObjectPlacement,
     /// The group it is placed in (an index into `Scene::groups`); None for the world.
     pub group: Option<usize>,
+    /// For a part of a glTF file, the node it hangs from (a `GroupKind::FileNode` group,
+    /// whose chain of parents ends at the file's frame); None otherwise.
+    pub node: Option<usize>,
 }
 
 /// Every kind of shape a scene file describes (a closed set).

@@ -17,6 +17,6 @@ mod prepared;
 pub use description::{CsgMember, RenderDefaults, Scene, SceneObject, ShapeDesc};
 pub use edit::{EditError, check_camera};
 pub use geometry::{Geometry, ObjectGeometry, PlanarUv};
-pub use group::{SceneGroup, group_chain, group_frame};
+pub use group::{GroupKind, SceneGroup, group_chain, group_frame};
 pub use placement::ObjectPlacement;
 pub use prepared::{CoincidentSurfaces, PreparedScene};

@@ -6,7 +6,7 @@ use super::camera::CameraDef;
 use super::entry_def::EntryDef;
 use super::entry_def::entry_label;
 use super::error::SceneError;
-use super::gltf_scene::GltfLight;
+use super::gltf_nodes::{GltfOrigin, node_groups};
 use super::groups::GroupDef;
 use super::kinds::object_kinds;
 use super::lights::LightDef;
@@ -38,9 +38,9 @@ pub struct ObjectOrigin {
     pub material: Option<String>,
     /// What the entry's file (a glTF scene) holds that prism does not read, in words.
     pub unread: Vec<String>,
-    /// The lights the entry's file (a glTF scene) brings, each by its index in the scene's
-    /// lights, as the file places them: placing the entry anew places them anew.
-    pub(super) file_lights: Arc<[(usize, GltfLight)]>,
+    /// For a glTF entry's parts, what they share: the file, its lights and its nodes, which
+    /// placing the entry or a node anew places anew.
+    pub(super) gltf: Option<Arc<GltfOrigin>>,
 }
 
 /// The whole file as parsed: the scene-wide tables, then one array of tables per kind of
@@ -145,13 +145,14 @@ impl Validator<'_> {
                 casts_shadow: d.shadow().unwrap_or(true),
                 placement: placement.written(),
                 group: placement.group(),
+                node: None,
             });
             origins.push(ObjectOrigin {
                 table: kind,
                 index: i,
                 material: d.material().map(str::to_string),
                 unread: Vec::new(),
-                file_lights: Arc::from([]),
+                gltf: None,
             });
             Ok(())
         };
@@ -204,8 +205,22 @@ impl Validator<'_> {
                 file_lights.push((lights.len(), light.clone()));
                 lights.push(self.gltf_light(&at, light, &placement)?);
             }
+            // A glTF file's nodes become groups its parts hang from.
+            let keys = d.nodes.iter().flat_map(|n| n.keys());
+            let (node_groups, nodes, part_nodes) = match entry.gltf {
+                Some(file) => node_groups(file, keys, groups.len()),
+                None => (Vec::new(), Vec::new(), Vec::new()),
+            };
+            groups.extend(node_groups);
             // Shared by the entry's parts.
-            let file_lights: Arc<[_]> = file_lights.into();
+            let gltf = entry.gltf.map(|file| {
+                Arc::new(GltfOrigin {
+                    file: file.clone(),
+                    lights: file_lights,
+                    nodes,
+                    last_walk: Default::default(),
+                })
+            });
             let mut unread = entry.unread.to_vec();
             match &d.camera {
                 Some(_) if !super::gltf_file::is_gltf(&d.path) => {
@@ -236,7 +251,7 @@ impl Validator<'_> {
             let transform =
                 self.mesh_transform(&at, parts.iter().map(|p| p.mesh.as_ref()), &placement)?;
             let name = d.name.clone().unwrap_or_else(|| format!("meshes {i}"));
-            for part in parts {
+            for (p, part) in parts.into_iter().enumerate() {
                 objects.push(SceneObject {
                     name: match &part.part {
                         Some(p) => format!("{name}/{p}"),
@@ -250,13 +265,14 @@ impl Validator<'_> {
                     casts_shadow: d.shadow.unwrap_or(true),
                     placement: placement.written(),
                     group: placement.group(),
+                    node: part_nodes.get(p).copied().flatten(),
                 });
                 origins.push(ObjectOrigin {
                     table: "meshes",
                     index: i,
                     material: d.material.clone(),
                     unread: unread.clone(),
-                    file_lights: file_lights.clone(),
+                    gltf: gltf.clone(),
                 });
             }
         }

@@ -251,20 +251,54 @@ impl LoadedScene {
                 placed!(file.$table, $read)
             };
             ($table:ident mesh) => {{
-                let (d, span, label) = entry!(file.$table);
+                // The entry, with its glTF file's nodes posed as the scene's node groups
+                // now place them.
+                let gltf = origin.gltf.as_deref();
+                let edited = gltf.map_or_else(Vec::new, |g| g.edited_poses(&self.scene, scene));
+                let Some(item) = file.$table.get_mut(index) else {
+                    return Ok(None);
+                };
+                let span = item.span();
+                let d = item.get_mut();
+                d.set_placement(placement);
+                for (key, pose, parts) in &edited {
+                    d.set_node_pose(key, pose, *parts, span.clone());
+                }
+                let d = &*d;
+                let label = entry_label(table, index, d.name());
                 let at = Item { span, name: &label };
                 let placed = v.placement(&at, d)?;
-                // Every part of the entry, with the mesh it holds.
-                let parts: Vec<(usize, std::sync::Arc<crate::geometry::Mesh>)> = self
+                // Every part of the entry, with the mesh the load read (a glTF file's
+                // nodes as the file poses them).
+                let mut parts: Vec<(usize, std::sync::Arc<crate::geometry::Mesh>)> = self
                     .origins
                     .iter()
                     .enumerate()
                     .filter(|(_, o)| o.table == stringify!($table) && o.index == index)
-                    .filter_map(|(j, _)| match &scene.objects.get(j)?.shape {
+                    .filter_map(|(j, _)| match &self.scene.objects.get(j)?.shape {
                         ShapeDesc::Mesh { mesh, .. } => Some((j, mesh.clone())),
                         _ => None,
                     })
                     .collect();
+                // The file's lights in its own frame, as its nodes now place them.
+                let mut file_lights: Vec<_> = gltf
+                    .iter()
+                    .flat_map(|g| g.lights.iter().map(|(_, l)| l.clone()))
+                    .collect();
+                if let Some(g) = gltf.filter(|_| !edited.is_empty()) {
+                    let walk = v.posed_walk(&at, d, g)?;
+                    if walk.parts.len() != parts.len() {
+                        return Err(v.field_error(
+                            &at,
+                            "nodes",
+                            "posed so, a part of the glTF file holds no triangle it can draw",
+                        ));
+                    }
+                    for ((_, mesh), part) in parts.iter_mut().zip(&walk.parts) {
+                        *mesh = part.mesh.clone();
+                    }
+                    file_lights = walk.lights.clone();
+                }
                 let transform =
                     v.mesh_transform(&at, parts.iter().map(|(_, m)| m.as_ref()), &placed)?;
                 let shapes = parts
@@ -272,8 +306,9 @@ impl LoadedScene {
                     .map(|(j, mesh)| (j, ShapeDesc::Mesh { mesh, transform }))
                     .collect();
                 // A glTF scene's lights go where the entry's new placement puts them.
-                for (light, read) in origin.file_lights.iter() {
-                    lights.push((*light, v.gltf_light(&at, read, &placed)?));
+                let numbers = gltf.iter().flat_map(|g| g.lights.iter().map(|(i, _)| *i));
+                for (light, read) in numbers.zip(&file_lights) {
+                    lights.push((light, v.gltf_light(&at, read, &placed)?));
                 }
                 (shapes, placed.written())
             }};

@@ -6,7 +6,10 @@
 //! reads one, so a malformed or truncated file is refused with a message, never a panic.
 
 use super::assets::{beside, read_file};
-use super::gltf_scene::{GltfCamera, GltfFile, GltfLight, GltfLightKind, GltfPart, NodePose};
+use super::gltf_scene::{
+    GltfCamera, GltfFile, GltfLight, GltfLightKind, GltfNode, GltfPart, GltfWalk, NodePose,
+    node_local, node_placement,
+};
 use super::validator::Validator;
 use crate::geometry::Mesh;
 use crate::limits;
@@ -307,50 +310,29 @@ impl Validator<'_> {
             }
         }
         let buffers = self.gltf_buffers(rel, &gltf)?;
-        let document = &gltf.document;
-        let scene = match document
-            .default_scene()
-            .or_else(|| document.scenes().next())
-        {
-            Some(scene) => scene,
-            None => return Err("it has no scene to show".into()),
-        };
-        let mut reader = NodeWalk {
-            json: gltf.document.as_json(),
-            cameras: Vec::new(),
-            buffers: &buffers,
+        let walk = walk_gltf(
+            &gltf.document,
+            &buffers,
             smooth,
-            budget: limits::MAX_SCENE_TRIANGLES.saturating_sub(triangles),
-            visits: 0,
-            parts: Vec::new(),
-            lights: Vec::new(),
-            unread: &mut unread,
+            limits::MAX_SCENE_TRIANGLES.saturating_sub(triangles),
             poses,
-            posed: vec![Vec::new(); poses.len()],
-        };
-        let mut path = Vec::new();
-        for node in scene.nodes() {
-            reader.node(&node, DMat4::IDENTITY, &mut path)?;
-        }
-        let (parts, lights, cameras) = (reader.parts, reader.lights, reader.cameras);
-        let posed = reader.posed;
+        )?;
+        unread.extend(walk.unread.iter().cloned());
+        let document = &gltf.document;
         if document.animations().next().is_some() {
             unread.push("animations (the first frame's pose is not applied either)".into());
         }
         if document.skins().next().is_some() {
             unread.push("skins".into());
         }
-        if parts.is_empty() {
+        if walk.parts.is_empty() {
             return Err("its scene holds no triangles".into());
         }
         Ok(GltfFile {
             document: gltf.document,
             buffers,
-            parts,
-            lights,
-            cameras,
+            walk,
             unread,
-            posed_nodes: posed.iter().map(Vec::len).collect(),
         })
     }
 
@@ -400,6 +382,65 @@ impl Validator<'_> {
     }
 }
 
+/// Walks the default scene (else the first) of the glTF file whose document is `document`
+/// and buffers `buffers`, each node posed by the pose in `poses` that names it: its mesh
+/// primitives (at most `budget` triangles together) placed in the file's frame, read
+/// `smooth` or not, with its nodes, lights and cameras.
+pub(super) fn walk_gltf(
+    document: &gltf::Document,
+    buffers: &[Vec<u8>],
+    smooth: bool,
+    budget: usize,
+    poses: &[NodePose],
+) -> Result<GltfWalk, Refusal> {
+    let scene = match document
+        .default_scene()
+        .or_else(|| document.scenes().next())
+    {
+        Some(scene) => scene,
+        None => return Err("it has no scene to show".into()),
+    };
+    let mut unread = Vec::new();
+    let mut walk = NodeWalk {
+        json: document.as_json(),
+        cameras: Vec::new(),
+        buffers,
+        smooth,
+        budget,
+        visits: 0,
+        parts: Vec::new(),
+        nodes: Vec::new(),
+        lights: Vec::new(),
+        unread: &mut unread,
+        poses,
+        posed: vec![Vec::new(); poses.len()],
+    };
+    let mut path = Vec::new();
+    for node in scene.nodes() {
+        walk.node(&node, None, DMat4::IDENTITY, &mut path)?;
+    }
+    let (parts, mut nodes, lights, cameras) = (walk.parts, walk.nodes, walk.lights, walk.cameras);
+    let posed_nodes = walk.posed.iter().map(Vec::len).collect();
+    // A node met more than once cannot be placed on its own.
+    let mut met = std::collections::HashMap::<usize, usize>::new();
+    for n in &nodes {
+        *met.entry(n.index).or_default() += 1;
+    }
+    for n in &mut nodes {
+        if met[&n.index] > 1 {
+            n.placement = None;
+        }
+    }
+    Ok(GltfWalk {
+        parts,
+        nodes,
+        lights,
+        cameras,
+        unread,
+        posed_nodes,
+    })
+}
+
 /// A walk of a glTF scene's node tree.
 struct NodeWalk<'a> {
     json: &'a gltf::json::Root,
@@ -410,6 +451,7 @@ struct NodeWalk<'a> {
     budget: usize,
     visits: usize,
     parts: Vec<GltfPart>,
+    nodes: Vec<GltfNode>,
     lights: Vec<GltfLight>,
     unread: &'a mut Vec<String>,
     /// The entry's poses for nodes, and the nodes each one met.
@@ -418,11 +460,13 @@ struct NodeWalk<'a> {
 }
 
 impl NodeWalk<'_> {
-    /// Node `node` under `parent` (its parent's frame to the file's), and its children;
-    /// `path` holds the nodes above it, to refuse a node within itself.
+    /// Node `node` under `parent` (the node above it, an index into `nodes`, and its frame
+    /// to the file's), and its children; `path` holds the nodes above it, to refuse a node
+    /// within itself.
     fn node(
         &mut self,
         node: &gltf::Node,
+        above: Option<usize>,
         parent: DMat4,
         path: &mut Vec<usize>,
     ) -> Result<(), Refusal> {
@@ -444,20 +488,45 @@ impl NodeWalk<'_> {
                 "its scene places more than {MAX_GLTF_NODE_VISITS} nodes"
             ));
         }
-        let mut local =
-            DMat4::from_cols_array_2d(&node.transform().matrix().map(|c| c.map(f64::from)));
-        for (pose, met) in self.poses.iter().zip(&mut self.posed) {
-            if pose.node.names(node) {
-                local = pose.local(node.transform().decomposed());
+        let transform = node.transform();
+        let decomposed = transform.clone().decomposed();
+        // The pose that names it (the last, if several do).
+        let mut pose = None;
+        for (p, met) in self.poses.iter().zip(&mut self.posed) {
+            if p.node.names(node) {
+                pose = Some(p);
                 if !met.contains(&node.index()) {
                     met.push(node.index());
                 }
             }
         }
+        // A matrix is taken as it is unless a pose replaces some of its parts; parts are
+        // composed by the one rule a pose's parts are (the turn taken of unit length).
+        let (local, sheared) = match transform {
+            gltf::scene::Transform::Matrix { matrix } if pose.is_none() => {
+                let matrix = DMat4::from_cols_array_2d(&matrix.map(|c| c.map(f64::from)));
+                let parts = node_local(None, decomposed);
+                let size = matrix.abs().to_cols_array().into_iter().fold(1.0, f64::max);
+                let apart = (parts - matrix).abs().to_cols_array();
+                (matrix, apart.iter().any(|d| *d > 1e-6 * size))
+            }
+            _ => (node_local(pose, decomposed), false),
+        };
         let frame = parent * local;
         if !frame.is_finite() {
             return Err(format!("{name}'s transform is not finite"));
         }
+        // A node whose transform a `translate`, `rotate` and `scale` cannot write (a shear,
+        // a mirror) is not placed on its own.
+        let placement = node_placement(pose, decomposed);
+        let writable = !sheared && placement.scale.min_element() > 0.0;
+        let this = self.nodes.len();
+        self.nodes.push(GltfNode {
+            index: node.index(),
+            name: name.clone(),
+            parent: above,
+            placement: writable.then_some(placement),
+        });
         if let Some(mesh) = node.mesh() {
             let several = mesh.primitives().len() > 1;
             for primitive in mesh.primitives() {
@@ -466,7 +535,7 @@ impl NodeWalk<'_> {
                 } else {
                     name.clone()
                 };
-                self.primitive(&primitive, &part, frame)?;
+                self.primitive(&primitive, &part, this, frame)?;
             }
         }
         if let Some(light) = node.light() {
@@ -515,7 +584,7 @@ impl NodeWalk<'_> {
         }
         path.push(node.index());
         for child in node.children() {
-            self.node(&child, frame, path)?;
+            self.node(&child, Some(this), frame, path)?;
         }
         path.pop();
         Ok(())
@@ -526,6 +595,7 @@ impl NodeWalk<'_> {
         &mut self,
         primitive: &gltf::Primitive,
         name: &str,
+        node: usize,
         frame: DMat4,
     ) -> Result<(), Refusal> {
         let at = |e: Refusal| format!("{name}: {e}");
@@ -612,6 +682,7 @@ impl NodeWalk<'_> {
         self.budget -= taken;
         self.parts.push(GltfPart {
             name: name.to_string(),
+            node,
             mesh: Arc::new(mesh),
             material: primitive.material().index(),
         });

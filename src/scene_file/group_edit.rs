@@ -1,10 +1,11 @@
 //! A group placed anew (the viewer's transform rows on a group): every object and light
 //! within it placed again, as a load of the file with the group's new values would place
-//! them, or none, with the reason, when one of them breaks the file's rules.
+//! them, or none, with the reason, when one of them breaks the file's rules. A glTF
+//! file's node is placed as its entry's pose for the node (`nodes`) with those values.
 
 use super::entry::edit_error;
 use super::load::LoadedScene;
-use crate::scene::{EditError, ObjectPlacement, Scene};
+use crate::scene::{EditError, GroupKind, ObjectPlacement, Scene};
 
 impl LoadedScene {
     /// Places `scene`'s group `group` by `placement` (its entry's `translate`, `rotate` and
@@ -19,10 +20,38 @@ impl LoadedScene {
         let Some(g) = scene.groups.get(group) else {
             return Err(EditError::NoSuchGroup(group));
         };
-        let name = g.name.clone();
+        let (name, kind) = (g.name.clone(), g.kind);
         let mut placed = scene.clone();
         placed.groups[group].placement = placement;
-        // One object per entry: a mesh entry places all its parts together.
+        let (objects, lights) = match kind {
+            GroupKind::Entry => self.entries_within(scene, group),
+            GroupKind::FileNode => {
+                // The entry whose file holds the node: its parts and lights follow.
+                let object = scene
+                    .objects
+                    .iter()
+                    .position(|o| o.node.is_some_and(|n| scene.group_within(n, group)))
+                    .ok_or(EditError::NoSuchGroup(group))?;
+                (vec![(object, scene.objects[object].placement)], Vec::new())
+            }
+        };
+        let entries = self
+            .placed_entries(&placed, &objects, &lights)
+            .map_err(|e| edit_error(e, &name))?
+            .ok_or(EditError::NoSuchGroup(group))?;
+        entries.apply(&mut placed);
+        *scene = placed;
+        Ok(())
+    }
+
+    /// The entries within `scene`'s group `group` (one object of each: a mesh entry places
+    /// all its parts together), with their placements, and the lights placed in it or in
+    /// a group within it.
+    fn entries_within(
+        &self,
+        scene: &Scene,
+        group: usize,
+    ) -> (Vec<(usize, ObjectPlacement)>, Vec<usize>) {
         let mut entries = Vec::new();
         let mut objects = Vec::new();
         for (i, o) in scene.objects.iter().enumerate() {
@@ -33,16 +62,10 @@ impl LoadedScene {
                 objects.push((i, o.placement));
             }
         }
-        let lights: Vec<usize> = (0..scene.groups.len())
+        let lights = (0..scene.groups.len())
             .filter(|&g| scene.group_within(g, group))
             .flat_map(|g| scene.groups[g].lights.iter().copied())
             .collect();
-        let entries = self
-            .placed_entries(&placed, &objects, &lights)
-            .map_err(|e| edit_error(e, &name))?
-            .ok_or(EditError::NoSuchGroup(group))?;
-        entries.apply(&mut placed);
-        *scene = placed;
-        Ok(())
+        (objects, lights)
     }
 }

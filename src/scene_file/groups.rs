@@ -7,7 +7,7 @@ use super::error::SceneError;
 use super::validator::{Item, P3, V3, Validator};
 use crate::limits;
 use crate::messages::{did_you_mean, quoted};
-use crate::scene::{ObjectPlacement, SceneGroup, group_chain, group_frame};
+use crate::scene::{GroupKind, ObjectPlacement, SceneGroup, group_chain, group_frame};
 use glam::DAffine3;
 use serde::Deserialize;
 use toml::Spanned;
@@ -76,6 +76,7 @@ impl Validator<'_> {
                 parent: None,
                 placement,
                 lights: Vec::new(),
+                kind: GroupKind::Entry,
             });
         }
         for (i, def) in defs.iter().enumerate() {

@@ -2,9 +2,10 @@
 //! prism's. A file placed by many entries is read and built once (instancing).
 
 use super::assets::{beside, read_text_file};
+use super::entry_def::placement_fields;
 use super::error::SceneError;
 use super::gltf_file::{is_gltf, too_many_triangles};
-use super::gltf_scene::{GltfCamera, GltfLight, NodePose, NodeRef};
+use super::gltf_scene::{GltfCamera, GltfFile, GltfLight, NodePose, NodeRef};
 use super::mtl::{MtlMaterial, parse_mtl};
 use super::obj::{LineError, parse_obj};
 use super::placement::Placement;
@@ -15,6 +16,7 @@ use crate::appearance::{Material, Relief, Texture, UvTransform};
 use crate::geometry::{Aabb, Mesh, Transform};
 use crate::limits;
 use crate::messages::{did_you_mean, quoted, shown_within};
+use crate::scene::ObjectPlacement;
 use glam::{DVec3, Vec3};
 use serde::Deserialize;
 use std::collections::{BTreeMap, HashMap};
@@ -51,6 +53,41 @@ pub(super) struct NodeDef {
     scale: Option<toml::Value>,
 }
 
+impl MeshDef {
+    /// Gives the node its pose at `key` (of `nodes`) names the parts `parts` of `pose`
+    /// (translate, rotate, scale), in place of those it had; `span` locates a new pose.
+    pub(super) fn set_node_pose(
+        &mut self,
+        key: &str,
+        pose: &ObjectPlacement,
+        [translate, rotate, scale]: [bool; 3],
+        span: std::ops::Range<usize>,
+    ) {
+        let nodes = self.nodes.get_or_insert_with(BTreeMap::new);
+        let def = nodes.entry(key.to_string()).or_insert_with(|| {
+            toml::Spanned::new(
+                span,
+                NodeDef {
+                    translate: None,
+                    rotate: None,
+                    scale: None,
+                },
+            )
+        });
+        let (t, r, s) = placement_fields(pose);
+        let def = def.get_mut();
+        if translate {
+            def.translate = t;
+        }
+        if rotate {
+            def.rotate = r;
+        }
+        if scale {
+            def.scale = s;
+        }
+    }
+}
+
 /// The mesh files one scene reads, each once.
 #[derive(Default)]
 pub(super) struct MeshFiles {
@@ -75,6 +112,8 @@ struct LoadedFile {
     cameras: Vec<GltfCamera>,
     /// What the file holds that prism does not read, in words.
     unread: Vec<String>,
+    /// A glTF file as read, to walk again when the viewer poses its nodes anew.
+    gltf: Option<Arc<GltfFile>>,
 }
 
 /// One material's part of a mesh file.
@@ -90,6 +129,8 @@ struct LoadedPart {
 /// prism does not read.
 pub(super) struct MeshEntry<'f> {
     pub(super) objects: Vec<MeshObject>,
+    /// A glTF file as read (its parts are `objects`, in order).
+    pub(super) gltf: Option<&'f Arc<GltfFile>>,
     pub(super) lights: &'f [GltfLight],
     pub(super) cameras: &'f [GltfCamera],
     pub(super) unread: &'f [String],
@@ -184,6 +225,7 @@ impl Validator<'_> {
             .collect();
         Ok(MeshEntry {
             objects,
+            gltf: file.gltf.as_ref(),
             lights: &file.lights,
             cameras: &file.cameras,
             unread: &file.unread,
@@ -222,7 +264,7 @@ impl Validator<'_> {
 
     /// Entry `d`'s poses for its glTF file's nodes, checked (none for an OBJ file, which
     /// has no nodes).
-    fn node_poses(&self, at: &Item, d: &MeshDef) -> Result<Vec<NodePose>, SceneError> {
+    pub(super) fn node_poses(&self, at: &Item, d: &MeshDef) -> Result<Vec<NodePose>, SceneError> {
         let Some(nodes) = &d.nodes else {
             return Ok(Vec::new());
         };
@@ -247,11 +289,45 @@ impl Validator<'_> {
                 Ok(NodePose {
                     node: NodeRef::parse(node),
                     translate: def.translate.map(|_| placement.translate),
-                    rotation: def.rotate.map(|_| placement.rotation()),
+                    rotate: def.rotate.map(|_| placement.rotate),
                     scale: def.scale.as_ref().map(|_| placement.scale),
                 })
             })
             .collect()
+    }
+
+    /// Refuses a pose of `poses` that names no node of glTF file `path` (whose `document`
+    /// a walk with them read), or several: `posed_nodes` counts those each one named.
+    pub(super) fn check_poses(
+        &self,
+        at: &Item,
+        path: &Path,
+        poses: &[NodePose],
+        posed_nodes: &[usize],
+        document: &gltf::Document,
+    ) -> Result<(), SceneError> {
+        for (pose, &met) in poses.iter().zip(posed_nodes) {
+            let problem = match met {
+                1 => continue,
+                0 => format!(
+                    "glTF file {} has no node named {} in its scene{}",
+                    quoted(&path.display().to_string()),
+                    quoted(&pose.node.to_string()),
+                    did_you_mean(
+                        &pose.node.to_string(),
+                        document.nodes().filter_map(|n| n.name())
+                    )
+                ),
+                n => format!(
+                    "{} names {n} nodes of glTF file {}; name one as `nodes[i]`, its index \
+                     in the file",
+                    quoted(&pose.node.to_string()),
+                    quoted(&path.display().to_string())
+                ),
+            };
+            return Err(self.field_error(at, "nodes", problem));
+        }
+        Ok(())
     }
 
     /// Reads glTF file `rel` (the scene's meshes hold `triangles` already) with its nodes
@@ -283,7 +359,12 @@ impl Validator<'_> {
         let key = (path.clone(), smooth, poses.to_vec());
         let file = match self.assets.cache().and_then(|cache| cache.gltf(&key)) {
             Some(file) => {
-                let total: usize = file.parts.iter().map(|p| p.mesh.triangle_count()).sum();
+                let total: usize = file
+                    .walk
+                    .parts
+                    .iter()
+                    .map(|p| p.mesh.triangle_count())
+                    .sum();
                 if total > limits::MAX_SCENE_TRIANGLES.saturating_sub(triangles) {
                     return Err(fail(too_many_triangles()));
                 }
@@ -300,28 +381,7 @@ impl Validator<'_> {
                 file
             }
         };
-        // Each pose names one node of the file's scene.
-        for (pose, &met) in poses.iter().zip(&file.posed_nodes) {
-            let problem = match met {
-                1 => continue,
-                0 => format!(
-                    "glTF file {} has no node named {} in its scene{}",
-                    quoted(&path.display().to_string()),
-                    quoted(&pose.node.to_string()),
-                    did_you_mean(
-                        &pose.node.to_string(),
-                        file.document.nodes().filter_map(|n| n.name())
-                    )
-                ),
-                n => format!(
-                    "{} names {n} nodes of glTF file {}; name one as `nodes[i]`, its index \
-                     in the file",
-                    quoted(&pose.node.to_string()),
-                    quoted(&path.display().to_string())
-                ),
-            };
-            return Err(self.field_error(at, "nodes", problem));
-        }
+        self.check_poses(at, &path, poses, &file.walk.posed_nodes, &file.document)?;
         let mut unread = file.unread.clone();
         let mut materials = self
             .gltf_materials(rel, &file, images, &mut unread)
@@ -334,6 +394,7 @@ impl Validator<'_> {
             ..Material::default()
         });
         let (parts, materials) = file
+            .walk
             .parts
             .iter()
             .map(|p| {
@@ -349,9 +410,10 @@ impl Validator<'_> {
             parts,
             libraries: Vec::new(),
             materials: Some(materials),
-            lights: file.lights.clone(),
-            cameras: file.cameras.clone(),
+            lights: file.walk.lights.clone(),
+            cameras: file.walk.cameras.clone(),
             unread: unread.iter().map(|u| shown_within(u, 300)).collect(),
+            gltf: Some(file),
         })
     }
 
@@ -388,6 +450,7 @@ impl Validator<'_> {
                 lights: Vec::new(),
                 cameras: Vec::new(),
                 unread: Vec::new(),
+                gltf: None,
             });
         }
         let text = self.read_asset_text(rel).map_err(|e| {
@@ -416,6 +479,7 @@ impl Validator<'_> {
             lights: Vec::new(),
             cameras: Vec::new(),
             unread: Vec::new(),
+            gltf: None,
         };
         if let Some(cache) = self.assets.cache() {
             let read = ReadMesh {

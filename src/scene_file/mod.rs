@@ -19,6 +19,7 @@ mod fixed_array;
 mod frames;
 mod gltf_file;
 mod gltf_materials;
+mod gltf_nodes;
 mod gltf_scene;
 mod group_edit;
 mod groups;

@@ -9,7 +9,7 @@ use crate::appearance::{
 };
 use crate::camera::Camera;
 use crate::messages::shortest;
-use crate::scene::{ObjectPlacement, Scene, ShapeDesc};
+use crate::scene::{GroupKind, ObjectPlacement, Scene, ShapeDesc};
 use glam::{DVec3, Vec3};
 use std::collections::{BTreeMap, HashMap};
 use thiserror::Error;
@@ -206,7 +206,8 @@ fn file_lights_placed(loaded: &LoadedScene, edited: &Scene) -> HashMap<usize, Li
     let mut entries = Vec::new();
     let mut objects = Vec::new();
     for (i, origin) in loaded.origins.iter().enumerate() {
-        if !origin.file_lights.is_empty() && !entries.contains(&(origin.table, origin.index)) {
+        let brings_lights = origin.gltf.as_ref().is_some_and(|g| !g.lights.is_empty());
+        if brings_lights && !entries.contains(&(origin.table, origin.index)) {
             entries.push((origin.table, origin.index));
             objects.extend(edited.objects.get(i).map(|o| (i, o.placement)));
         }
@@ -393,12 +394,69 @@ fn write_placements(
         write_placement(entry, &was, &now);
     }
     for (i, (was, now)) in before.groups.iter().zip(&edited.groups).enumerate() {
-        if was.placement != now.placement {
-            let entry = array_entry(doc, "groups", i)?;
-            write_placement(entry, &was.placement, &now.placement);
+        if was.placement == now.placement {
+            continue;
+        }
+        match now.kind {
+            GroupKind::Entry => {
+                let entry = array_entry(doc, "groups", i)?;
+                write_placement(entry, &was.placement, &now.placement);
+            }
+            GroupKind::FileNode => {
+                let pose = node_pose_table(doc, loaded, i)?;
+                write_placement(pose, &was.placement, &now.placement);
+            }
         }
     }
     Ok(())
+}
+
+/// The pose (`[meshes.nodes."NAME"]`) of the glTF node that is group `group`, in its
+/// entry; made, empty, if the entry has none.
+fn node_pose_table<'d>(
+    doc: &'d mut DocumentMut,
+    loaded: &LoadedScene,
+    group: usize,
+) -> Result<&'d mut dyn TableLike, SaveError> {
+    // A part of the entry hangs from the node or a node within it.
+    let scene = &loaded.scene;
+    let part = scene
+        .objects
+        .iter()
+        .position(|o| o.node.is_some_and(|n| scene.group_within(n, group)));
+    let node = part.and_then(|i| {
+        let o = loaded.origins.get(i)?;
+        let nodes = &o.gltf.as_ref()?.nodes;
+        let at = nodes.binary_search_by_key(&group, |n| n.group).ok()?;
+        Some((o.table, o.index, nodes[at].key.clone()))
+    });
+    let Some((table, index, key)) = node else {
+        return Err(SaveError::Missing(format!("glTF node for group {group}")));
+    };
+    // An entry written as a `[[meshes]]` table takes `[meshes.nodes."NAME"]` tables; one
+    // written inline takes inline tables.
+    let tables = matches!(doc.get(table), Some(Item::ArrayOfTables(_)));
+    let new = || {
+        if tables {
+            let mut t = Table::new();
+            t.set_implicit(true);
+            Item::Table(t)
+        } else {
+            Item::Value(Value::InlineTable(Default::default()))
+        }
+    };
+    let missing = || SaveError::Missing(format!("{table}[{index}]'s nodes.{key} table"));
+    let entry = array_entry(doc, table, index)?;
+    let nodes = entry
+        .entry("nodes")
+        .or_insert_with(new)
+        .as_table_like_mut()
+        .ok_or_else(missing)?;
+    nodes
+        .entry(&key)
+        .or_insert_with(new)
+        .as_table_like_mut()
+        .ok_or_else(missing)
 }
 
 /// The fields of an entry's placement that changed from `was` to `now`.

@@ -3,6 +3,7 @@
 //! and uses the part it needs (so some of it is unused in any one suite).
 #![allow(dead_code)]
 
+pub mod gltf;
 pub mod povray;
 
 use prism::camera::Camera;

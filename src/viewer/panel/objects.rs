@@ -7,7 +7,7 @@ use egui::{DragValue, RichText, Slider, SliderClamping};
 use glam::DVec3;
 use prism::appearance::{Relief, Texture};
 use prism::limits::{MAX_PHONG_FACTOR, MAX_RADIANCE, MAX_SHININESS};
-use prism::scene::ObjectPlacement;
+use prism::scene::{GroupKind, ObjectPlacement};
 
 /// The depth of a material's bumps or the strength of its normal map, when it has one;
 /// the field changed, if one was.
@@ -65,8 +65,11 @@ impl PanelState {
             return;
         };
         ui.label(RichText::new(format!("Selected: {}", self.scene.objects[i].name)).strong());
-        // What the transform rows place: the object, or one of the groups it is in.
-        let chain = self.scene.group_chain(self.scene.objects[i].group);
+        // What the transform rows place: the object, or one of the groups it is in (for a
+        // part of a glTF file, its nodes first, then its entry's groups).
+        let object = &self.scene.objects[i];
+        let mut chain = self.scene.group_chain(object.node);
+        chain.extend(self.scene.group_chain(object.group));
         let mut target = self
             .placing_group
             .filter(|(object, g)| *object == i && chain.contains(g))
@@ -75,12 +78,18 @@ impl PanelState {
             ui.horizontal_wrapped(|ui| {
                 ui.label("place").on_hover_text(
                     "The transform rows edit the object's own placement, or that of a group \
-                     it is in (innermost first): everything in the group follows",
+                     it is in (innermost first): everything in the group follows. A glTF \
+                     file's nodes come first; the object's own placement places its whole \
+                     file",
                 );
                 ui.radio_value(&mut target, None, "object");
                 for &g in &chain {
-                    let name = format!("group {}", self.scene.groups[g].name);
-                    ui.radio_value(&mut target, Some(g), name);
+                    let group = &self.scene.groups[g];
+                    let kind = match group.kind {
+                        GroupKind::Entry => "group",
+                        GroupKind::FileNode => "node",
+                    };
+                    ui.radio_value(&mut target, Some(g), format!("{kind} {}", group.name));
                 }
             });
         }
