@@ -209,21 +209,7 @@ fn main() {
         "bufferViews": b.views,
         "accessors": b.accessors
     });
-    let mut json = serde_json::to_vec(&doc).unwrap();
-    while !json.len().is_multiple_of(4) {
-        json.push(b' ');
-    }
-    let total = 12 + 8 + json.len() + 8 + b.bin.len();
-    let mut file = Vec::with_capacity(total);
-    file.extend(b"glTF");
-    file.extend(2u32.to_le_bytes());
-    file.extend((total as u32).to_le_bytes());
-    file.extend((json.len() as u32).to_le_bytes());
-    file.extend(b"JSON");
-    file.extend(json);
-    file.extend((b.bin.len() as u32).to_le_bytes());
-    file.extend(b"BIN\0");
-    file.extend(&b.bin);
+    let file = prism::scene_file::glb_file(&serde_json::to_vec(&doc).unwrap(), &b.bin);
     std::fs::write(&out, file).unwrap();
     println!("wrote {out}");
 }

@@ -267,3 +267,75 @@ fn soft_shadows_draw_the_same_image_with_every_shortcut_off() {
         );
     }
 }
+
+/// A combination of many members finds the members a ray or a point comes near through
+/// hierarchies over their boxes; asking every member must draw the same image: bites out
+/// of a box (a difference), a row of boxes touching face to face (hits at one distance on
+/// two members), overlapping glass balls merged (refraction and shadows through them), and
+/// a union holding a half-space (an inside no box holds).
+#[test]
+fn combinations_of_many_members_draw_what_asking_every_member_draws() {
+    let mut text = String::from(
+        "[camera]\neye = [0.5, 5, 13]\nlook_at = [0, 0.5, 0]\nfov = 50\n\
+         [render]\nmax_depth = 6\n\
+         [[lights]]\nposition = [-6, 10, 8]\n\
+         [[lights]]\nposition = [5, 6, 4]\ncolor = [0.3, 0.3, 0.4]\n\
+         [materials.glass]\ncolor = [0.9, 0.95, 1]\ntransparency = 0.9\neta = 1.5\n\
+         [materials.red]\ncolor = [0.8, 0.2, 0.1]\n\
+         [[csg]]\noperation = \"difference\"\nmaterial = \"red\"\ntranslate = [-3, 0, 0]\n\
+         [[csg.members]]\ntype = \"box\"\nmin = [-2, -1, -2]\nmax = [2, 1, 2]\n",
+    );
+    for i in 0..30 {
+        let (x, z) = ((i % 6) as f32 * 0.8 - 2.0, (i / 6) as f32 * 0.8 - 1.6);
+        text +=
+            &format!("[[csg.members]]\ntype = \"sphere\"\ncenter = [{x}, 1, {z}]\nradius = 0.35\n");
+    }
+    // Overlapping boxes of two materials, their tops and fronts in one plane, inside an
+    // intersection with a ball: two members meet many rays at one distance.
+    text += "[[csg]]\noperation = \"intersection\"\ntranslate = [3, 0, -1]\n\
+             [[csg.members]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 2.2\n\
+             [[csg.members]]\ntype = \"csg\"\noperation = \"union\"\n";
+    for i in 0..12 {
+        let x = i as f32 * 0.5 - 3.0;
+        let material = ["red", "glass"][i % 2];
+        text += &format!(
+            "[[csg.members.members]]\ntype = \"box\"\nmin = [{x}, -1, -1]\nmax = [{}, 1, 1]\n\
+             material = \"{material}\"\n",
+            x + 0.75
+        );
+    }
+    text += "[[csg]]\noperation = \"merge\"\nmaterial = \"glass\"\ntranslate = [0, 1.5, 2.5]\n";
+    for i in 0..20 {
+        let a = i as f32 * 2.399;
+        let r = (i as f32).sqrt() * 0.3;
+        text += &format!(
+            "[[csg.members]]\ntype = \"sphere\"\ncenter = [{}, {}, {}]\nradius = 0.4\n",
+            r * a.cos(),
+            (i % 3) as f32 * 0.2,
+            r * a.sin()
+        );
+    }
+    text += "[[csg]]\noperation = \"difference\"\ntranslate = [0, -1, -4]\n\
+             [[csg.members]]\ntype = \"box\"\nmin = [-6, -1, -1]\nmax = [6, 0.5, 1]\n\
+             [[csg.members]]\ntype = \"csg\"\noperation = \"union\"\n\
+             [[csg.members.members]]\ntype = \"plane\"\npoint = [0, 0, 0]\nnormal = [1, 0.2, 0]\n";
+    for i in 0..10 {
+        text += &format!(
+            "[[csg.members.members]]\ntype = \"sphere\"\ncenter = [{}, 0.5, 0]\nradius = 0.5\n",
+            i as f32 * 0.5 + 0.5
+        );
+    }
+    let scene = prism::scene_file::parse_scene(
+        &text,
+        std::path::Path::new("many.toml"),
+        std::path::Path::new("."),
+    )
+    .unwrap();
+    let s = RenderSettings::new(240, 160, 2);
+    let with = image(prepared(&scene, |_| {}), scene.camera, s);
+    let without = image(prepared(&scene, |o| o.bvh = false), scene.camera, s);
+    assert_eq!(with, without);
+    // The scene shows what it should: not a blank image.
+    let distinct: std::collections::HashSet<&[u8]> = with.chunks(3).collect();
+    assert!(distinct.len() > 100, "{} colours", distinct.len());
+}

@@ -77,6 +77,17 @@ impl WideNode {
         }
     }
 
+    /// Which lanes' boxes hold point `p` (bit i for lane i; on a face counts).
+    #[inline(always)]
+    fn holding(&self, p: Vec3A) -> u32 {
+        let mut mask = 0b1111;
+        for axis in 0..3 {
+            let at = F32x4::splat(p[axis]);
+            mask &= self.lo[axis].le_mask(at) & at.le_mask(self.hi[axis]);
+        }
+        mask
+    }
+
     /// Which lanes' boxes the ray enters before `t_max` (bit i for lane i), and the entry
     /// distances. Robust against rounding: the far distances are widened by 2γ(3) (pbrt-v4
     /// 6.1.2), and an axis on which the ray runs exactly in a slab's boundary plane
@@ -429,6 +440,39 @@ impl Bvh {
             match next.or_else(|| stack.pop()) {
                 Some(next) => node = next,
                 None => return,
+            }
+        }
+    }
+
+    /// Visits every primitive in a leaf whose box holds point `p` (on its faces counts), in
+    /// no particular order, until `visit` returns true; whether one did. Without
+    /// allocation: for point queries per ray.
+    #[inline]
+    pub fn any_containing(&self, p: Vec3A, mut visit: impl FnMut(u32) -> bool) -> bool {
+        if self.nodes.is_empty() {
+            return false;
+        }
+        let mut stack = Stack::<u32, STACK_SIZE>::new();
+        let mut node = 0u32;
+        loop {
+            let n = &self.nodes[node as usize];
+            let mut inside = n.holding(p);
+            while inside != 0 {
+                let lane = inside.trailing_zeros() as usize;
+                inside &= inside - 1;
+                match n.child(lane) {
+                    Child::Empty => {}
+                    Child::Node(c) => stack.push(c),
+                    Child::Leaf(mut range) => {
+                        if range.any(&mut visit) {
+                            return true;
+                        }
+                    }
+                }
+            }
+            match stack.pop() {
+                Some(next) => node = next,
+                None => return false,
             }
         }
     }

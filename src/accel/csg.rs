@@ -4,6 +4,7 @@
 //! point lies inside the other members (POV-Ray's method): no interval lists, no
 //! allocation per ray, at most the members' own intersection work plus point tests.
 
+use super::csg_members::{BoxFinder, MIN_MEMBERS_FOR_HIERARCHY, MemberFinder};
 use super::instance::{Instance, Model};
 use crate::geometry::{
     Aabb, Disc, HitDetail, RayQuery, Shape, ShapeHit, ShapePart, SurfacePoint, UvFrame,
@@ -120,6 +121,8 @@ pub enum CsgNode {
         /// The leaves under it, as they are numbered in the tree's order (kept, so that a
         /// hit finds its member without walking the tree).
         leaves: std::ops::Range<u32>,
+        /// For many members, which may hold a point (set by `Csg::new`).
+        finder: Option<Box<MemberFinder>>,
     },
 }
 
@@ -132,6 +135,7 @@ impl CsgNode {
             operation,
             members,
             leaves: first..last,
+            finder: None,
         }
     }
 
@@ -159,25 +163,43 @@ pub struct Csg {
     /// The material each leaf's surface takes, as the appearance numbers them.
     materials: Vec<u32>,
     bounds: Aabb,
+    /// For many leaves, which a ray may meet.
+    leaf_finder: Option<BoxFinder>,
 }
 
 impl Csg {
     /// The solid of tree `root` over `leaves` (numbered in the tree's order), each leaf's
-    /// surface of the material `materials` gives it.
+    /// surface of the material `materials` gives it. With `hierarchies`, a solid of many
+    /// members finds those a ray or a point comes near through hierarchies over their boxes
+    /// (csg_members.rs); without, it asks every one (the same image, for comparisons).
     ///
     /// # Panics
     /// If there is not one material per leaf.
-    pub fn new(root: CsgNode, leaves: Vec<CsgLeaf>, materials: Vec<u32>) -> Self {
+    pub fn new(
+        mut root: CsgNode,
+        leaves: Vec<CsgLeaf>,
+        materials: Vec<u32>,
+        hierarchies: bool,
+    ) -> Self {
         assert_eq!(materials.len(), leaves.len(), "one material per leaf");
         let mut turned = vec![false; leaves.len()];
         mark_turned(&root, false, &mut turned);
         let bounds = node_bounds(&root, &leaves);
+        let mut leaf_finder = None;
+        if hierarchies {
+            add_finders(&mut root, &leaves);
+            if leaves.len() >= MIN_MEMBERS_FOR_HIERARCHY {
+                let boxes: Vec<Aabb> = leaves.iter().map(CsgLeaf::bounds).collect();
+                leaf_finder = Some(BoxFinder::new(&boxes));
+            }
+        }
         Self {
             root,
             leaves,
             turned,
             materials,
             bounds,
+            leaf_finder,
         }
     }
 
@@ -200,17 +222,37 @@ impl Csg {
         match node {
             CsgNode::Leaf(i) => self.leaves[*i as usize].contains(p),
             CsgNode::Combine {
-                operation, members, ..
+                operation,
+                members,
+                finder,
+                ..
             } => match operation {
                 CsgOperation::Union | CsgOperation::Merge => {
-                    members.iter().any(|m| self.contains(m, p))
+                    self.any_holding(members, finder, p, |_| true)
                 }
                 CsgOperation::Intersection => members.iter().all(|m| self.contains(m, p)),
                 CsgOperation::Difference => {
                     self.contains(&members[0], p)
-                        && !members[1..].iter().any(|m| self.contains(m, p))
+                        && !self.any_holding(members, finder, p, |m| m > 0)
                 }
             },
+        }
+    }
+
+    /// Whether `p` lies inside one of `members` that `asked` picks (by its index), found
+    /// by `finder` where the combination has one.
+    #[inline]
+    fn any_holding(
+        &self,
+        members: &[CsgNode],
+        finder: &Option<Box<MemberFinder>>,
+        p: Vec3A,
+        asked: impl Fn(usize) -> bool,
+    ) -> bool {
+        let holds = |m: usize| asked(m) && self.contains(&members[m], p);
+        match finder {
+            Some(finder) => finder.any(p, holds),
+            None => (0..members.len()).any(holds),
         }
     }
 
@@ -224,33 +266,36 @@ impl Csg {
 
     fn on_surface_below(&self, node: &CsgNode, leaf: u32, p: Vec3A, root: bool) -> bool {
         let CsgNode::Combine {
-            operation, members, ..
+            operation,
+            members,
+            finder,
+            ..
         } = node
         else {
             return true;
         };
-        let Some(own) = members.iter().position(|m| m.leaves().contains(&leaf)) else {
+        // Members hold their leaves in order: the one holding `leaf` is found by halving.
+        let own = members.partition_point(|m| m.leaves().end <= leaf);
+        if !members.get(own).is_some_and(|m| m.leaves().contains(&leaf)) {
             return false;
-        };
+        }
         if !self.on_surface_below(&members[own], leaf, p, false) {
             return false;
         }
-        let mut others = members
-            .iter()
-            .enumerate()
-            .filter(|(i, _)| *i != own)
-            .map(|(_, m)| m);
+        let other = |m: usize| m != own;
         match operation {
             CsgOperation::Union if root => true,
-            CsgOperation::Union | CsgOperation::Merge => !others.any(|m| self.contains(m, p)),
-            CsgOperation::Intersection => others.all(|m| self.contains(m, p)),
-            CsgOperation::Difference if own == 0 => !others.any(|m| self.contains(m, p)),
+            CsgOperation::Union | CsgOperation::Merge => {
+                !self.any_holding(members, finder, p, other)
+            }
+            CsgOperation::Intersection => members
+                .iter()
+                .enumerate()
+                .all(|(m, member)| m == own || self.contains(member, p)),
+            CsgOperation::Difference if own == 0 => !self.any_holding(members, finder, p, other),
             CsgOperation::Difference => {
                 self.contains(&members[0], p)
-                    && !members[1..]
-                        .iter()
-                        .enumerate()
-                        .any(|(i, m)| i + 1 != own && self.contains(m, p))
+                    && !self.any_holding(members, finder, p, |m| m > 0 && m != own)
             }
         }
     }
@@ -278,33 +323,60 @@ impl Csg {
         }
     }
 
-    /// The nearest hit on the solid with t in (t_min, t_max).
+    /// The nearest hit on the solid with t in (t_min, t_max); of hits at one distance, the
+    /// one on the lowest-numbered leaf.
     pub fn intersect_after(&self, q: &RayQuery, t_min: f32, t_max: f32) -> Option<ShapeHit> {
-        let mut nearest: Option<ShapeHit> = None;
-        for leaf in 0..self.leaves.len() {
-            let limit = nearest.map_or(t_max, |h| h.t);
+        let mut nearest: Option<(usize, ShapeHit)> = None;
+        let mut try_leaf = |leaf: usize| {
+            // A leaf numbered below the nearest's may meet the ray at the same distance.
+            let limit = match nearest {
+                None => t_max,
+                Some((at, hit)) if leaf < at => hit.t.next_up(),
+                Some((_, hit)) => hit.t,
+            };
             self.leaf_hits(leaf, q, t_min, limit, |hit| {
-                nearest = Some(ShapeHit {
+                let hit = ShapeHit {
                     t: hit.t,
                     detail: HitDetail::Csg {
                         leaf: leaf as u16,
                         part: ShapePart::of(hit.detail),
                     },
-                });
+                };
+                nearest = Some((leaf, hit));
                 false
             });
+            nearest.map(|(_, hit)| hit.t)
+        };
+        match &self.leaf_finder {
+            Some(finder) => {
+                finder
+                    .bvh()
+                    .closest(q, t_max, |i, _| try_leaf(finder.index(i)));
+            }
+            None => (0..self.leaves.len()).for_each(|leaf| {
+                try_leaf(leaf);
+            }),
         }
-        nearest
+        nearest.map(|(_, hit)| hit)
     }
 
     /// How many times the segment (0, t_max) crosses the solid's surface.
     pub fn crossings(&self, q: &RayQuery, t_max: f32) -> u32 {
         let mut count = 0;
-        for leaf in 0..self.leaves.len() {
+        let mut count_leaf = |leaf: usize| {
             self.leaf_hits(leaf, q, 0.0, t_max, |_| {
                 count += 1;
                 true
             });
+            true
+        };
+        match &self.leaf_finder {
+            Some(finder) => finder
+                .bvh()
+                .visit(q, t_max, |i| count_leaf(finder.index(i))),
+            None => (0..self.leaves.len()).for_each(|leaf| {
+                count_leaf(leaf);
+            }),
         }
         count
     }
@@ -383,24 +455,54 @@ fn mark_turned(node: &CsgNode, turned: bool, out: &mut [bool]) {
 /// The box around subtree `node`: an intersection lies within every member's box, a
 /// difference within its first member's.
 fn node_bounds(node: &CsgNode, leaves: &[CsgLeaf]) -> Aabb {
+    combined_box(node, &|i| Some(leaves[i as usize].bounds())).unwrap_or(Aabb::EMPTY)
+}
+
+/// The box subtree `node`'s leaves' boxes (`leaf_box`; None for one without a bound) make
+/// as its operations combine them; None when it has no bound.
+fn combined_box(node: &CsgNode, leaf_box: &impl Fn(u32) -> Option<Aabb>) -> Option<Aabb> {
     match node {
-        CsgNode::Leaf(i) => leaves[*i as usize].bounds(),
+        CsgNode::Leaf(i) => leaf_box(*i),
         CsgNode::Combine {
             operation, members, ..
         } => {
-            let mut boxes = members.iter().map(|m| node_bounds(m, leaves));
+            let mut boxes = members.iter().map(|m| combined_box(m, leaf_box));
             match operation {
                 CsgOperation::Union | CsgOperation::Merge => {
-                    boxes.fold(Aabb::EMPTY, |a, b| a.union(b))
+                    boxes.try_fold(Aabb::EMPTY, |a, b| Some(a.union(b?)))
                 }
-                CsgOperation::Intersection => boxes
-                    .reduce(|a, b| Aabb {
-                        min: a.min.max(b.min),
-                        max: a.max.min(b.max),
-                    })
-                    .unwrap_or(Aabb::EMPTY),
-                CsgOperation::Difference => boxes.next().unwrap_or(Aabb::EMPTY),
+                CsgOperation::Intersection => boxes.flatten().reduce(|a, b| Aabb {
+                    min: a.min.max(b.min),
+                    max: a.max.min(b.max),
+                }),
+                CsgOperation::Difference => boxes.next().flatten(),
             }
         }
     }
+}
+
+/// Gives every combination of many members under `node` its member finder.
+fn add_finders(node: &mut CsgNode, leaves: &[CsgLeaf]) {
+    if let CsgNode::Combine {
+        members, finder, ..
+    } = node
+    {
+        if members.len() >= MIN_MEMBERS_FOR_HIERARCHY {
+            let insides: Vec<Option<Aabb>> =
+                members.iter().map(|m| inside_bounds(m, leaves)).collect();
+            *finder = Some(Box::new(MemberFinder::new(&insides)));
+        }
+        for m in members {
+            add_finders(m, leaves);
+        }
+    }
+}
+
+/// The box the inside of subtree `node` lies in; None where it has no bound (a half-space
+/// is the inside of a plane, which its disc's box does not hold).
+fn inside_bounds(node: &CsgNode, leaves: &[CsgLeaf]) -> Option<Aabb> {
+    combined_box(node, &|i| match &leaves[i as usize] {
+        CsgLeaf::HalfSpace(_) => None,
+        leaf => Some(leaf.bounds()),
+    })
 }

@@ -18,6 +18,7 @@
 mod bvh;
 mod bvh_build;
 mod csg;
+mod csg_members;
 mod first_hit;
 mod instance;
 mod isolated;
@@ -46,7 +47,8 @@ use std::sync::Arc;
 /// (tests/optimizations.rs); turning one off is for measuring what it buys.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct AccelOptions {
-    /// A BVH over the primitives; off, every ray tests every primitive (one leaf).
+    /// A BVH over the primitives, and hierarchies inside a CSG solid of many members;
+    /// off, every ray tests every primitive (one leaf) and every member.
     pub bvh: bool,
     /// Primary rays look up what they can hit first by tile (first_hit.rs).
     pub first_hit_tiles: bool,

@@ -2,6 +2,7 @@
 
 mod convergence;
 mod edit;
+mod modelling;
 mod numerics;
 mod scale;
 mod scenes;
@@ -56,6 +57,19 @@ pub enum BenchKind {
         out: Option<std::path::PathBuf>,
         /// Timed runs per figure (the median is reported).
         #[arg(long, default_value_t = 9)]
+        runs: usize,
+    },
+    /// CSG against the same solids as separate objects, and a million-triangle glTF file
+    /// read and built (docs/benchmarks/modelling.md).
+    Modelling {
+        /// Fewer spheres, a small image and a 100k-triangle file: proves the bench works.
+        #[arg(long)]
+        quick: bool,
+        /// Where modelling.md goes (default: prism-bench/modelling in the working directory).
+        #[arg(long)]
+        out: Option<std::path::PathBuf>,
+        /// Timed runs per figure (the median is reported).
+        #[arg(long, default_value_t = 5)]
         runs: usize,
     },
     /// What a million-triangle mesh and 100 instances cost (docs/benchmarks/scale.md).
@@ -123,6 +137,11 @@ fn run_in_pool(args: BenchArgs) -> Result<()> {
             quick,
             runs: runs.max(1),
             out_dir: out.unwrap_or_else(|| std::path::Path::new("prism-bench").join("scale")),
+        }),
+        BenchKind::Modelling { quick, out, runs } => modelling::run(modelling::Config {
+            quick,
+            runs: runs.max(1),
+            out_dir: out.unwrap_or_else(|| std::path::Path::new("prism-bench").join("modelling")),
         }),
         BenchKind::Speed { quick, out, runs } => speed::run(speed::Config {
             quick,

@@ -144,11 +144,13 @@ fn plane_reach(scene: &Scene) -> f32 {
 /// The surface of a CSG member (or a whole CSG solid) on its own: a closed shape, a plane
 /// (as a disc of radius `reach`), a transformed shape, or a combination; with the material
 /// of a lone solid's surface. `materials` gives each solid's material in the tree's order
-/// and is consumed as the solids are.
+/// and is consumed as the solids are; `hierarchies` gives a combination of many members
+/// its hierarchies (`Csg::new`).
 fn csg_member_surface(
     desc: &ShapeDesc,
     reach: f32,
     materials: &mut impl Iterator<Item = u32>,
+    hierarchies: bool,
 ) -> (Surface, u32) {
     let lone = |materials: &mut dyn Iterator<Item = u32>| materials.next().expect("a material");
     match csg_leaf(desc, reach) {
@@ -162,7 +164,7 @@ fn csg_member_surface(
             let root = csg_node(desc, reach, &mut leaves);
             slots.extend(materials.take(leaves.len()));
             // A combination's hits name their members' materials themselves.
-            let csg = Csg::new(root, leaves, slots);
+            let csg = Csg::new(root, leaves, slots, hierarchies);
             (Surface::Csg(Arc::new(csg)), CSG_MEMBERS_MATERIAL)
         }
     }
@@ -337,14 +339,18 @@ impl Geometry {
                     members,
                 } => {
                     for member in members {
-                        let (surface, material) =
-                            csg_member_surface(&member.shape, plane_reach, &mut member_materials);
+                        let (surface, material) = csg_member_surface(
+                            &member.shape,
+                            plane_reach,
+                            &mut member_materials,
+                            options.bvh,
+                        );
                         push_with(surface, material);
                     }
                 }
                 csg @ ShapeDesc::Csg { .. } => {
                     let (surface, material) =
-                        csg_member_surface(csg, plane_reach, &mut member_materials);
+                        csg_member_surface(csg, plane_reach, &mut member_materials, options.bvh);
                     push_with(surface, material);
                 }
             }

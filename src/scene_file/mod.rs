@@ -17,6 +17,7 @@ mod entry_def;
 mod error;
 mod fixed_array;
 mod frames;
+mod glb;
 mod gltf_file;
 mod gltf_materials;
 mod gltf_nodes;
@@ -46,6 +47,7 @@ pub use assets::Assets;
 pub use camera_table::camera_table;
 pub use error::SceneError;
 pub use frames::SceneFrames;
+pub use glb::glb_file;
 pub use load::{
     LoadedScene, SceneLoad, load_scene, load_scene_file, load_scene_file_at, parse_loaded,
     parse_scene, parse_scene_with,

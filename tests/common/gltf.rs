@@ -86,24 +86,5 @@ pub fn base64(bytes: &[u8]) -> String {
 
 /// A GLB file of `document` with `bin` as its binary chunk.
 pub fn glb(document: &Value, bin: &[u8]) -> Vec<u8> {
-    let mut json = serde_json::to_vec(document).unwrap();
-    while !json.len().is_multiple_of(4) {
-        json.push(b' ');
-    }
-    let mut bin = bin.to_vec();
-    while !bin.len().is_multiple_of(4) {
-        bin.push(0);
-    }
-    let total = 12 + 8 + json.len() + 8 + bin.len();
-    let mut out = Vec::new();
-    out.extend(b"glTF");
-    out.extend(2u32.to_le_bytes());
-    out.extend((total as u32).to_le_bytes());
-    out.extend((json.len() as u32).to_le_bytes());
-    out.extend(b"JSON");
-    out.extend(json);
-    out.extend((bin.len() as u32).to_le_bytes());
-    out.extend(b"BIN\0");
-    out.extend(bin);
-    out
+    prism::scene_file::glb_file(&serde_json::to_vec(document).unwrap(), bin)
 }
