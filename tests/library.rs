@@ -17,6 +17,7 @@ const BINARY_ONLY: &[&str] = &[
     "egui",
     "egui_plot",
     "libc",
+    "oidn",
 ];
 
 /// The names of the normal (not dev or build) dependencies of the library, with `features`.
@@ -59,8 +60,9 @@ fn the_library_builds_without_the_binary_dependencies() {
             "the library needs {name}"
         );
     }
-    // With the default features they are all there: the test can tell the difference.
-    let everything = dependencies(&[]);
+    // With the default features and the denoiser they are all there: the test can tell the
+    // difference.
+    let everything = dependencies(&["--features", "denoise"]);
     for name in BINARY_ONLY {
         assert!(everything.iter().any(|d| d == name), "{name} is gone");
     }

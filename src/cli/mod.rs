@@ -85,6 +85,10 @@ pub struct ViewArgs {
     /// ("prism-timing:" lines, read by tests/window/responsiveness.sh).
     #[arg(long)]
     pub log_timing: bool,
+    /// Show the image denoised by Intel Open Image Denoise 2 from the start (the panel's
+    /// "denoised" switch; a build with the `denoise` feature).
+    #[arg(long)]
+    pub denoise: bool,
 }
 
 pub fn run(args: Args) -> Result<()> {
@@ -133,6 +137,7 @@ fn view(args: ViewArgs) -> Result<()> {
         settings,
         screenshot_dir: args.screenshot_dir.unwrap_or_else(|| PathBuf::from(".")),
         log_timing: args.log_timing,
+        denoise: args.denoise,
     })
 }
 

@@ -162,6 +162,41 @@ fn check_outputs(
 }
 
 /// The settings, region and output options, from the flags and the frame's scene.
+/// What `--denoise` says in a build without the `denoise` feature.
+const DENOISE_MISSING: &str = "--denoise: this prism was built without denoising; build it \
+    with `cargo build --release --features denoise` where Intel Open Image Denoise 2 is \
+    installed (OIDN_DIR names the folder whose lib/ holds libOpenImageDenoise; \
+    docs/effects.md, \"Denoising\")";
+
+/// The finished film `film` of `job` (of `scene`, the whole frame) denoised.
+#[cfg(feature = "denoise")]
+fn denoised(
+    film: &prism::render::Accumulator,
+    scene: &Scene,
+    job: &prism::render::ProgressiveRender,
+    pool: &rayon::ThreadPool,
+) -> Result<prism::render::Accumulator> {
+    let settings = job.settings();
+    let guides = pool.install(|| {
+        prism::render::guide_images(job.scene(), scene.camera, settings, job.passes_done())
+    });
+    Ok(prism::render::denoise(
+        film,
+        &guides,
+        settings.high_dynamic_range,
+    )?)
+}
+
+#[cfg(not(feature = "denoise"))]
+fn denoised(
+    _: &prism::render::Accumulator,
+    _: &Scene,
+    _: &prism::render::ProgressiveRender,
+    _: &rayon::ThreadPool,
+) -> Result<prism::render::Accumulator> {
+    bail!(BadOption(DENOISE_MISSING.into()))
+}
+
 fn make_plan(args: &RenderArgs, scene: &Scene) -> Result<Plan> {
     let mut settings = RenderSettings::for_scene(&scene.render, args.width, args.height, args.aa)?;
     if let Some(n) = args.samples {
@@ -192,6 +227,18 @@ fn make_plan(args: &RenderArgs, scene: &Scene) -> Result<Plan> {
         (None, None) => PixelRect::full(width, height),
     };
     region.check_within(width, height)?;
+    if args.denoise {
+        if !region.is_full(width, height) {
+            bail!(BadOption(
+                "--denoise filters the whole frame: not with --region or --tile (denoise \
+                 the stitched image's render instead)"
+                    .into()
+            ));
+        }
+        if !cfg!(feature = "denoise") {
+            bail!(BadOption(DENOISE_MISSING.into()));
+        }
+    }
     let placement = (!region.is_full(width, height)).then_some(Placement {
         rect: region,
         frame_width: width,
@@ -332,7 +379,10 @@ fn render_frame(
             saved: false
         });
     }
-    let sums = job.sums_of(plan.region);
+    let mut sums = job.sums_of(plan.region).into_owned();
+    if args.denoise {
+        sums = denoised(&sums, &scene, &job, pool)?;
+    }
     let image = prism::render::encode(&sums, format, &plan.options);
     let path = pending.finish_image(&image, format, &plan.options, plan.placement)?;
     let rays = job.rays_traced();

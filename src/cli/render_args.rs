@@ -95,6 +95,10 @@ pub struct RenderArgs {
     /// Trace every secondary ray, however faint (the unoptimised reference).
     #[arg(long)]
     pub exact: bool,
+    /// Denoise the finished image with Intel Open Image Denoise 2, guided by the first
+    /// surfaces' colours and normals (a build with the `denoise` feature; the whole frame).
+    #[arg(long)]
+    pub denoise: bool,
     /// No progress bar.
     #[arg(long, short)]
     pub quiet: bool,

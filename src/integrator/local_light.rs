@@ -2,12 +2,35 @@
 //! specular terms from every light a shadow ray reaches.
 
 use super::{Integrator, Shading};
-use crate::accel::Toward;
-use crate::appearance::{Falloff, LightKind, reflect};
-use crate::geometry::SurfacePoint;
+use crate::accel::{Hit, Toward};
+use crate::appearance::{Falloff, LightKind, Material, reflect};
+use crate::geometry::{RayQuery, SurfacePoint};
 use glam::Vec3A;
 
 impl Integrator<'_> {
+    /// The colour of `material`'s texture at `surface`, the point of `hit` (on object
+    /// `object`) along `q`.
+    #[inline]
+    pub(super) fn texture_color(
+        &self,
+        q: &RayQuery,
+        hit: &Hit,
+        object: u32,
+        material: &Material,
+        surface: &SurfacePoint,
+    ) -> Vec3A {
+        let object = self.geometry.object(object);
+        let p = surface.point;
+        let uv = if !material.texture.needs_uv() {
+            (0.0, 0.0)
+        } else if let Some(planar) = object.planar_uv {
+            planar.uv(p)
+        } else {
+            self.accel().uv(q, surface, hit)
+        };
+        material.texture.eval(uv, object.texture_point(p))
+    }
+
     /// The ambient, diffuse and specular light at `at`; the diffuse part fades with the
     /// material's opacity, the highlight (light reflected at the surface) does not.
     #[inline]
@@ -20,14 +43,7 @@ impl Integrator<'_> {
         let object = self.geometry.object(at.object);
         let p = at.surface.point;
         let n = at.n;
-        let uv = if !material.texture.needs_uv() {
-            (0.0, 0.0)
-        } else if let Some(planar) = object.planar_uv {
-            planar.uv(p)
-        } else {
-            self.accel().uv(at.q, &at.surface, at.hit)
-        };
-        let base = material.texture.eval(uv, object.texture_point(p));
+        let base = self.texture_color(at.q, at.hit, at.object, material, &at.surface);
         if !material.texture.needs_uv() {
             self.signature.pattern(base);
         }

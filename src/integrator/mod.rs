@@ -4,6 +4,8 @@
 //! point, and reads materials and lights from the appearance.
 
 mod coincident;
+mod first_surface;
+mod guide;
 mod local_light;
 mod path;
 mod reflection;
@@ -11,6 +13,7 @@ mod relief;
 mod signature;
 mod transmission;
 
+pub use guide::Guide;
 pub use signature::Signature;
 
 use crate::accel::{Accelerator, Hit, Reach};

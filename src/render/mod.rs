@@ -4,6 +4,9 @@
 
 mod accumulator;
 mod compare;
+#[cfg(feature = "denoise")]
+mod denoise;
+mod guides;
 mod heat_map;
 mod image_file;
 mod image_read;
@@ -17,6 +20,9 @@ mod stitch;
 
 pub use accumulator::{Accumulator, PixelSum, luminance, to_8bit};
 pub use compare::fraction_differing;
+#[cfg(feature = "denoise")]
+pub use denoise::{DenoiseError, denoise};
+pub use guides::{GuideImages, MAX_GUIDE_SUBSAMPLES, guide_images};
 pub use heat_map::{ERROR_SCALE, Legend, View, mean_error, scale_color, write_view_rgba8};
 pub use image_file::{
     BitDepth, ImageFormat, OutputOptions, PLACEMENT_KEY, Placement, encode, sidecar_path, write_png,

@@ -88,10 +88,15 @@ impl App {
         let proxy = self.proxy.clone();
         let (scene, camera) = (&self.panel.scene, self.panel.camera);
         let settings = |(w, h)| self.settings(w, h);
+        let denoise = self.panel.denoise;
         Gfx::open(event_loop, self.initial_image, |image| {
-            RenderThread::spawn(scene, camera, settings(image), move || {
+            let thread = RenderThread::spawn(scene, camera, settings(image), move || {
                 let _ = proxy.send_event(Wake);
-            })
+            });
+            if denoise {
+                thread.send(Request::Denoise(true));
+            }
+            thread
         })
     }
 

@@ -41,6 +41,9 @@ impl App {
         if let Some(view) = changes.view {
             g.render.send(Request::View(view));
         }
+        if let Some(on) = changes.denoise {
+            g.render.send(Request::Denoise(on));
+        }
         if changes.camera {
             self.send_camera(false);
         }

@@ -42,6 +42,8 @@ pub struct Launch {
     pub screenshot_dir: PathBuf,
     /// Log frame times and change latencies (`timing.rs`).
     pub log_timing: bool,
+    /// Show the image denoised from the start.
+    pub denoise: bool,
 }
 
 /// Opens the window and runs until it closes.
@@ -51,6 +53,7 @@ pub fn run(launch: Launch) -> Result<()> {
         settings: mut probe,
         screenshot_dir,
         log_timing,
+        denoise,
     } = launch;
     let aa = probe.aa;
     let window_width = probe.width as u64 + PANEL_WIDTH.ceil() as u64;
@@ -137,7 +140,7 @@ pub fn run(launch: Launch) -> Result<()> {
     let mut app = App {
         proxy: event_loop.create_proxy(),
         screenshot_dir,
-        panel: PanelState::new(scene, aa),
+        panel: PanelState::new(scene, aa).denoised(denoise),
         input: CameraInput::new(step),
         document,
         loads,

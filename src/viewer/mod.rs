@@ -4,6 +4,7 @@
 
 mod app;
 mod camera_input;
+mod denoised;
 mod document;
 mod document_actions;
 mod edits;

@@ -3,6 +3,7 @@
 //! request, cancels the pass in flight at the next band of rows. Scenes are prepared here,
 //! never on the UI thread, and an appearance edit changes a table in place.
 
+use super::denoised::Denoised;
 use prism::camera::Camera;
 use prism::render::{Legend, PassOutcome, ProgressiveRender, RenderSettings, View};
 use prism::scene::{PreparedScene, Scene};
@@ -59,6 +60,8 @@ pub enum Request {
     Select(Option<usize>),
     /// Show the image, or a heat map of the samples or the error estimates.
     View(View),
+    /// Show the image denoised (or raw).
+    Denoise(bool),
 }
 
 /// What the render thread reports alongside each image.
@@ -91,6 +94,9 @@ pub struct Status {
     pub legend: Option<Legend>,
     /// The mean error estimate over the pixels that have one: the convergence plot's.
     pub mean_error: Option<f64>,
+    /// Whether the image shown is denoised, and why denoising failed.
+    pub denoised: bool,
+    pub denoise_error: Option<String>,
 }
 
 /// The latest published image, as RGBA8 rows.
@@ -147,6 +153,7 @@ impl RenderThread {
                     preview_first: false,
                     last_seconds: 0.0,
                     view: View::Image,
+                    denoised: Denoised::default(),
                     requests: rx,
                     generation: generation_,
                     published: published_,
@@ -228,6 +235,7 @@ struct Worker {
     /// Seconds from the restart to the end of the last pass.
     last_seconds: f64,
     view: View,
+    denoised: Denoised,
     requests: Receiver<Request>,
     generation: Arc<AtomicU64>,
     published: Arc<Mutex<Published>>,
@@ -342,12 +350,17 @@ impl Worker {
                 self.view = view;
                 return republish(self);
             }
+            Request::Denoise(on) => {
+                self.denoised.on = on;
+                return republish(self);
+            }
             _ => {}
         }
         self.restarted = Instant::now();
         self.preview_first = true;
+        self.denoised.restart();
         match request {
-            Request::Pick { .. } | Request::Select(_) | Request::View(_) => {}
+            Request::Pick { .. } | Request::Select(_) | Request::View(_) | Request::Denoise(_) => {}
             Request::Scene(scene) => {
                 let prepared = self.job.scene().updated(&self.scene, &scene);
                 self.job.set_scene(Arc::new(prepared));
@@ -434,7 +447,13 @@ impl Worker {
         let s = self.job.settings();
         let (width, height) = (s.width, s.height);
         let mut rgba = vec![0u8; (width * height * 4) as usize];
-        let legend = prism::render::write_view_rgba8(self.job.accumulator(), self.view, &mut rgba);
+        let denoised = match self.view {
+            View::Image => self.denoised.film(&self.job),
+            View::Samples | View::Error => None,
+        };
+        let is_denoised = denoised.is_some();
+        let film = denoised.unwrap_or(self.job.accumulator());
+        let legend = prism::render::write_view_rgba8(film, self.view, &mut rgba);
         let rays = self.job.rays_traced();
         let converged = self.job.is_converged();
         let status = Status {
@@ -459,6 +478,8 @@ impl Worker {
             generation: self.pass_generation,
             legend,
             mean_error: prism::render::mean_error(self.job.accumulator()),
+            denoised: is_denoised,
+            denoise_error: self.denoised.error.clone(),
         };
         if self.outline.is_none()
             && let Some(object) = self.selection

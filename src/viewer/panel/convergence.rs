@@ -1,6 +1,7 @@
 //! The panel's Convergence section: the live plot of the error, and the switch between the
 //! image and the heat maps with their legend.
 
+use super::super::denoised::NOT_BUILT;
 use super::super::render_thread::Status;
 use super::{Changes, PanelState};
 use prism::render::{Legend, View};
@@ -23,7 +24,25 @@ impl PanelState {
                     changes.view = Some(view);
                 }
             }
+            let toggle = egui::Checkbox::new(&mut self.denoise, "denoised");
+            let toggled = ui
+                .add_enabled(cfg!(feature = "denoise"), toggle)
+                .on_hover_text(
+                    "Show the image filtered by Intel Open Image Denoise, guided by the first \
+                     surfaces' colours and normals: again after each pass that doubles the \
+                     samples, and at the end",
+                )
+                .on_disabled_hover_text(NOT_BUILT)
+                .changed();
+            if toggled {
+                changes.denoise = Some(self.denoise);
+            }
         });
+        if let Some(e) = &status.denoise_error {
+            ui.small(format!("not denoised: {e}"));
+        } else if status.denoised {
+            ui.small("denoised (Intel Open Image Denoise)");
+        }
         if let Some(legend) = status.legend {
             legend_bar(ui, &legend, self.view);
         }

@@ -67,6 +67,8 @@ pub struct Changes {
     pub frame: Option<u32>,
     /// Show the image or a heat map.
     pub view: Option<View>,
+    /// Show the image denoised, or raw.
+    pub denoise: Option<bool>,
     /// Place an object's entry anew (its `translate`, `rotate`, `scale`), and which of the
     /// three changed.
     pub place: Option<(usize, ObjectPlacement, &'static str)>,
@@ -115,6 +117,8 @@ pub struct PanelState {
     path_entry: String,
     /// What the image area shows.
     pub view: View,
+    /// Whether the image is shown denoised.
+    pub denoise: bool,
     /// The accumulation's course since it last restarted: seconds, samples per pixel and
     /// mean error estimate after each pass.
     pub convergence: Vec<[f64; 3]>,
@@ -145,12 +149,19 @@ impl PanelState {
             file: FileStatus::default(),
             path_entry: String::new(),
             view: View::Image,
+            denoise: false,
             convergence: Vec::new(),
             plot_by_samples: false,
             orbit: false,
             scale_per_axis: false,
             placing_group: None,
         }
+    }
+
+    /// The panel with the image shown denoised (or not) from the start.
+    pub fn denoised(mut self, on: bool) -> Self {
+        self.denoise = on;
+        self
     }
 
     /// Shows a scene loaded anew (a reload, an undo, another file): the selection is kept
