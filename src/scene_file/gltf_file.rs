@@ -460,9 +460,9 @@ struct NodeWalk<'a> {
 }
 
 impl NodeWalk<'_> {
-    /// Node `node` under `parent` (the node above it, an index into `nodes`, and its frame
-    /// to the file's), and its children; `path` holds the nodes above it, to refuse a node
-    /// within itself.
+    /// Node `node` and its children, under `above` (the node above it, an index into
+    /// `nodes`) whose frame `parent` maps to the file's; `path` holds the nodes above it, to
+    /// refuse a node within itself.
     fn node(
         &mut self,
         node: &gltf::Node,
