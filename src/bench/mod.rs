@@ -119,6 +119,17 @@ pub enum BenchKind {
     },
 }
 
+/// Writes the table `md` to `name` in folder `dir` (made if missing) and prints it.
+fn write_report(dir: &std::path::Path, name: &str, md: &str) -> Result<()> {
+    use anyhow::Context;
+    std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+    let path = dir.join(name);
+    std::fs::write(&path, md).with_context(|| format!("writing {}", path.display()))?;
+    print!("{md}");
+    println!("wrote {}", path.display());
+    Ok(())
+}
+
 pub fn run(args: BenchArgs) -> Result<()> {
     let pool = prism::render::thread_pool(None)?;
     pool.install(|| run_in_pool(args))

@@ -236,11 +236,6 @@ pub fn run(cfg: Config) -> Result<()> {
         field.len() as f64 / 1e6
     );
 
-    std::fs::create_dir_all(&cfg.out_dir)
-        .with_context(|| format!("creating {}", cfg.out_dir.display()))?;
-    let path = cfg.out_dir.join("modelling.md");
-    std::fs::write(&path, &md).with_context(|| format!("writing {}", path.display()))?;
-    print!("{md}");
-    println!("wrote {}", path.display());
+    super::write_report(&cfg.out_dir, "modelling.md", &md)?;
     Ok(())
 }

@@ -188,11 +188,6 @@ pub fn run(cfg: Config) -> Result<()> {
         one as f64 / 1024.0,
         many as f64 / one as f64
     );
-    std::fs::create_dir_all(&cfg.out_dir)
-        .with_context(|| format!("creating {}", cfg.out_dir.display()))?;
-    let path = cfg.out_dir.join("scale.md");
-    std::fs::write(&path, &md).with_context(|| format!("writing {}", path.display()))?;
-    print!("{md}");
-    println!("wrote {}", path.display());
+    super::write_report(&cfg.out_dir, "scale.md", &md)?;
     Ok(())
 }

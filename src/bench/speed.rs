@@ -394,11 +394,6 @@ pub fn run(cfg: Config) -> Result<()> {
             r.what, r.prism, r.reference, r.ratio, r.target
         );
     }
-    std::fs::create_dir_all(&cfg.out_dir)
-        .with_context(|| format!("creating {}", cfg.out_dir.display()))?;
-    let path = cfg.out_dir.join("speed.md");
-    std::fs::write(&path, &md).with_context(|| format!("writing {}", path.display()))?;
-    print!("{md}");
-    println!("wrote {}", path.display());
+    super::write_report(&cfg.out_dir, "speed.md", &md)?;
     Ok(())
 }

@@ -162,39 +162,35 @@ fn check_outputs(
 }
 
 /// The settings, region and output options, from the flags and the frame's scene.
-/// What `--denoise` says in a build without the `denoise` feature.
-const DENOISE_MISSING: &str = "--denoise: this prism was built without denoising; build it \
-    with `cargo build --release --features denoise` where Intel Open Image Denoise 2 is \
-    installed (OIDN_DIR names the folder whose lib/ holds libOpenImageDenoise; \
-    docs/effects.md, \"Denoising\")";
-
 /// The finished film `film` of `job` (of `scene`, the whole frame) denoised.
-#[cfg(feature = "denoise")]
 fn denoised(
     film: &prism::render::Accumulator,
     scene: &Scene,
     job: &prism::render::ProgressiveRender,
     pool: &rayon::ThreadPool,
 ) -> Result<prism::render::Accumulator> {
-    let settings = job.settings();
-    let guides = pool.install(|| {
-        prism::render::guide_images(job.scene(), scene.camera, settings, job.passes_done())
-    });
-    Ok(prism::render::denoise(
-        film,
-        &guides,
-        settings.high_dynamic_range,
-    )?)
+    #[cfg(feature = "denoise")]
+    {
+        let settings = job.settings();
+        let guides = pool.install(|| {
+            prism::render::guide_images(job.scene(), scene.camera, settings, job.passes_done())
+        });
+        Ok(prism::render::denoise(
+            film,
+            &guides,
+            settings.high_dynamic_range,
+        )?)
+    }
+    #[cfg(not(feature = "denoise"))]
+    {
+        let _ = (film, scene, job, pool);
+        bail!(BadOption(denoise_missing()))
+    }
 }
 
-#[cfg(not(feature = "denoise"))]
-fn denoised(
-    _: &prism::render::Accumulator,
-    _: &Scene,
-    _: &prism::render::ProgressiveRender,
-    _: &rayon::ThreadPool,
-) -> Result<prism::render::Accumulator> {
-    bail!(BadOption(DENOISE_MISSING.into()))
+/// What `--denoise` says in a build without the `denoise` feature.
+fn denoise_missing() -> String {
+    format!("--denoise: {}", prism::render::DENOISE_NOT_BUILT)
 }
 
 fn make_plan(args: &RenderArgs, scene: &Scene) -> Result<Plan> {
@@ -236,7 +232,7 @@ fn make_plan(args: &RenderArgs, scene: &Scene) -> Result<Plan> {
             ));
         }
         if !cfg!(feature = "denoise") {
-            bail!(BadOption(DENOISE_MISSING.into()));
+            bail!(BadOption(denoise_missing()));
         }
     }
     let placement = (!region.is_full(width, height)).then_some(Placement {

@@ -38,6 +38,12 @@ pub use region::{PixelRect, RegionError, adaptive_margin};
 pub use settings::{AdaptiveSettings, DEFAULT_MIN_WEIGHT, RenderSettings, SettingsError};
 pub use stitch::{StitchError, StitchPlan, plan_stitch, stitch};
 
+/// What a build without the `denoise` feature says when asked to denoise.
+pub const DENOISE_NOT_BUILT: &str = "this prism was built without denoising; build it with \
+    `cargo build --release --features denoise` where Intel Open Image Denoise 2 is installed \
+    (OIDN_DIR names the folder whose lib/ holds libOpenImageDenoise; docs/effects.md, \
+    \"Denoising\")";
+
 use crate::camera::Camera;
 use crate::scene::PreparedScene;
 use std::sync::Arc;

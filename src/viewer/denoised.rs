@@ -64,11 +64,6 @@ impl Denoised {
 
     #[cfg(not(feature = "denoise"))]
     fn filter(&mut self, _: &ProgressiveRender) -> Result<Accumulator, String> {
-        Err(NOT_BUILT.into())
+        Err(prism::render::DENOISE_NOT_BUILT.into())
     }
 }
-
-/// What the panel says where the feature is missing.
-pub const NOT_BUILT: &str = "this prism was built without denoising: build it with \
-    `--features denoise` where Intel Open Image Denoise 2 is installed (docs/effects.md, \
-    \"Denoising\")";

@@ -1,7 +1,6 @@
 //! The panel's Convergence section: the live plot of the error, and the switch between the
 //! image and the heat maps with their legend.
 
-use super::super::denoised::NOT_BUILT;
 use super::super::render_thread::Status;
 use super::{Changes, PanelState};
 use prism::render::{Legend, View};
@@ -32,7 +31,7 @@ impl PanelState {
                      surfaces' colours and normals: again after each pass that doubles the \
                      samples, and at the end",
                 )
-                .on_disabled_hover_text(NOT_BUILT)
+                .on_disabled_hover_text(prism::render::DENOISE_NOT_BUILT)
                 .changed();
             if toggled {
                 changes.denoise = Some(self.denoise);
