@@ -11,7 +11,7 @@ use proptest::prelude::*;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, OnceLock};
 
-const SEEDS: [&str; 14] = [
+const SEEDS: [&str; 15] = [
     include_str!("../fuzz/corpus/seed.toml"),
     include_str!("../fuzz/corpus/shapes.toml"),
     include_str!("../fuzz/corpus/sphere.toml"),
@@ -26,6 +26,7 @@ const SEEDS: [&str; 14] = [
     include_str!("../fuzz/corpus/smooth-mesh-and-brackets.toml"),
     include_str!("../fuzz/corpus/csg.toml"),
     include_str!("../fuzz/corpus/groups.toml"),
+    include_str!("../fuzz/corpus/path.toml"),
 ];
 
 /// Values that have broken renderers: overflow when squared or multiplied, underflow,
@@ -233,7 +234,8 @@ fn frame_loads_or_explains(
         }
         Ok(scene) => {
             let prepared = Arc::new(PreparedScene::new(&scene));
-            let settings = RenderSettings::new(6, 4, 1);
+            let mut settings = RenderSettings::new(6, 4, 1);
+            settings.integrator = scene.render.integrator;
             let job = prism::render::render(prepared, scene.camera, settings, |_, _| {});
             for p in &job.accumulator().pixels {
                 prop_assert!(p.mean().is_finite(), "a pixel of {}", p.mean());

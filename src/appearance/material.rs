@@ -178,6 +178,13 @@ impl Material {
         }
     }
 
+    /// Whether light through this surface changes direction (an index of refraction other
+    /// than 1).
+    #[inline]
+    pub fn bends(&self) -> bool {
+        matches!(self.eta, Some(eta) if eta != 1.0)
+    }
+
     /// How much of the light crossing this surface once goes on, tinted by its colour:
     /// the clearer the surface, the less tint (a 90% clear green glass casts a pale green
     /// shadow).

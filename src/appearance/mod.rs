@@ -25,6 +25,8 @@ use glam::{Vec3, Vec3A};
 pub struct Appearance {
     materials: Vec<Material>,
     shadow: ShadowFilters,
+    /// The same for the path tracer's shadow rays.
+    path_shadow: ShadowFilters,
     lights: Vec<Light>,
     /// Read at every hit and miss, so kept in the hot path's SIMD form.
     ambient: Vec3A,
@@ -38,6 +40,8 @@ pub struct Appearance {
 /// What one crossing of each object's surface lets through to a shadow ray.
 #[derive(Clone, Debug)]
 pub struct ShadowFilters {
+    /// Which integrator's meaning of a transparent surface the filters follow.
+    rule: ShadowRule,
     per_object: Vec<Vec3A>,
     /// Whether each object blocks light at all (false: it lets everything through).
     casts_shadow: Vec<bool>,
@@ -46,9 +50,22 @@ pub struct ShadowFilters {
     any_transmission: bool,
 }
 
+/// What a transparent surface lets through to a shadow ray (a closed set).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ShadowRule {
+    /// Whitted's: a transparent surface passes light tinted by its colour
+    /// (`Material::shadow_filter`), glass that bends light included.
+    Whitted,
+    /// The path tracer's: light through a surface that bends it cannot reach the light
+    /// along a straight shadow ray (the path's bounces carry it), so such a surface blocks;
+    /// one that lets light on unbent passes its `transparency`, as a path through it does.
+    Path,
+}
+
 impl ShadowFilters {
-    fn new(materials: &[Material], casts_shadow: Vec<bool>) -> Self {
+    fn new(materials: &[Material], casts_shadow: Vec<bool>, rule: ShadowRule) -> Self {
         let mut filters = Self {
+            rule,
             per_object: Vec::with_capacity(materials.len()),
             casts_shadow,
             any_transmission: false,
@@ -63,16 +80,23 @@ impl ShadowFilters {
 
     /// What object `object`, of `material`, lets through.
     fn filter(&self, object: usize, material: &Material) -> Vec3A {
-        if self.casts_shadow[object] {
-            material.shadow_filter().into()
-        } else {
-            Vec3A::ONE
+        if !self.casts_shadow[object] {
+            return Vec3A::ONE;
+        }
+        match self.rule {
+            ShadowRule::Whitted => material.shadow_filter().into(),
+            ShadowRule::Path if material.bends() => Vec3A::ZERO,
+            ShadowRule::Path => Vec3A::splat(material.transparency),
         }
     }
 
     fn update_any(&mut self, materials: &[Material]) {
-        self.any_transmission = materials.iter().any(|m| m.transparency > 0.0)
-            || self.casts_shadow.iter().any(|&casts| !casts);
+        let passes = |m: &Material| match self.rule {
+            ShadowRule::Whitted => m.transparency > 0.0,
+            ShadowRule::Path => m.transparency > 0.0 && !m.bends(),
+        };
+        self.any_transmission =
+            materials.iter().any(passes) || self.casts_shadow.iter().any(|&casts| !casts);
     }
 
     /// What a crossing of `object`'s surface lets through.
@@ -106,8 +130,9 @@ impl Appearance {
         Self {
             shadow: {
                 assert_eq!(casts_shadow.len(), materials.len(), "one flag per object");
-                ShadowFilters::new(&materials, casts_shadow)
+                ShadowFilters::new(&materials, casts_shadow.clone(), ShadowRule::Whitted)
             },
+            path_shadow: ShadowFilters::new(&materials, casts_shadow, ShadowRule::Path),
             materials,
             any_emitter: lights.iter().any(|l| l.emitter().is_some()),
             lights,
@@ -123,6 +148,7 @@ impl Appearance {
     pub fn with_member_materials(mut self, members: Vec<Material>) -> Self {
         self.materials.extend(members);
         self.shadow.update_any(&self.materials);
+        self.path_shadow.update_any(&self.materials);
         self
     }
 
@@ -145,9 +171,12 @@ impl Appearance {
     /// # Panics
     /// If there is no such object.
     pub fn set_material(&mut self, object: usize, material: Material) {
-        self.shadow.per_object[object] = self.shadow.filter(object, &material);
+        for filters in [&mut self.shadow, &mut self.path_shadow] {
+            filters.per_object[object] = filters.filter(object, &material);
+        }
         self.materials[object] = material;
         self.shadow.update_any(&self.materials);
+        self.path_shadow.update_any(&self.materials);
     }
 
     /// Sets light `light`'s colour (intensity per channel, already validated). Its position
@@ -217,6 +246,12 @@ impl Appearance {
     #[inline]
     pub fn shadow_filters(&self) -> &ShadowFilters {
         &self.shadow
+    }
+
+    /// What the path tracer's shadow rays see of each surface ([`ShadowRule::Path`]).
+    #[inline]
+    pub fn path_shadow_filters(&self) -> &ShadowFilters {
+        &self.path_shadow
     }
 
     /// The lights.

@@ -10,6 +10,7 @@ mod stop;
 
 use anyhow::Result;
 use clap::{Parser, Subcommand};
+use prism::integrator::IntegratorKind;
 use prism::render::{OutputError, SettingsError};
 use prism::scene_file::SceneError;
 use std::path::PathBuf;
@@ -65,6 +66,14 @@ where
         .range((*range.start()).into()..=(*range.end()).into())
 }
 
+/// A parser of an integrator's name, offering exactly the names a scene file takes.
+pub fn integrator_name() -> impl clap::builder::TypedValueParser<Value = IntegratorKind> {
+    use clap::builder::TypedValueParser;
+    let names = IntegratorKind::ALL.map(IntegratorKind::name);
+    clap::builder::PossibleValuesParser::new(names)
+        .map(|name: String| IntegratorKind::from_name(&name).expect("one of the names offered"))
+}
+
 #[derive(clap::Args, Debug, Default)]
 pub struct ViewArgs {
     /// Scene file (TOML); the seed scene when omitted.
@@ -89,6 +98,10 @@ pub struct ViewArgs {
     /// "denoised" switch; a build with the `denoise` feature).
     #[arg(long)]
     pub denoise: bool,
+    /// The light transport: whitted (direct light, mirrors and glass) or path (light that
+    /// bounces); default: the scene's `integrator`, else whitted.
+    #[arg(long, value_parser = integrator_name())]
+    pub integrator: Option<IntegratorKind>,
 }
 
 pub fn run(args: Args) -> Result<()> {
@@ -130,8 +143,11 @@ fn view(args: ViewArgs) -> Result<()> {
             (crate::viewer::Start::File { path, load }, defaults)
         }
     };
-    let settings =
+    let mut settings =
         prism::render::RenderSettings::for_scene(&defaults, args.width, args.height, args.aa)?;
+    if let Some(kind) = args.integrator {
+        settings.integrator = kind;
+    }
     crate::viewer::run(crate::viewer::Launch {
         start,
         settings,

@@ -205,6 +205,9 @@ fn make_plan(args: &RenderArgs, scene: &Scene) -> Result<Plan> {
     if args.exact {
         settings.min_weight = 0.0;
     }
+    if let Some(kind) = args.integrator {
+        settings.integrator = kind;
+    }
     if args.adaptive {
         settings.adaptive = Some(AdaptiveSettings {
             tolerance: args.tolerance,

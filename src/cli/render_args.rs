@@ -2,6 +2,7 @@
 //! for: below the command's files (render.rs, frames.rs, output_paths.rs, stitch.rs), which
 //! all read them.
 
+use prism::integrator::IntegratorKind;
 use prism::render::AdaptiveSettings;
 use std::path::PathBuf;
 
@@ -83,6 +84,10 @@ pub struct RenderArgs {
     /// Subsample positions: stratified (jittered in each cell) or grid (cell centres).
     #[arg(long, value_enum, default_value = "stratified")]
     pub layout: Layout,
+    /// The light transport: whitted (direct light, mirrors and glass) or path (light that
+    /// bounces); default: the scene's `integrator`, else whitted.
+    #[arg(long, value_parser = super::integrator_name())]
+    pub integrator: Option<IntegratorKind>,
     /// Stop refining pixels whose subsamples agree.
     #[arg(long)]
     pub adaptive: bool,

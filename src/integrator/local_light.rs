@@ -7,7 +7,61 @@ use crate::appearance::{Falloff, LightKind, Material, reflect};
 use crate::geometry::{RayQuery, SurfacePoint};
 use glam::Vec3A;
 
+/// Where the shadow rays from one hit start.
+pub(super) struct ShadowStart {
+    /// On a smooth mesh seen from the side its normals face, the point lifted off the facet
+    /// (the lift is outwards only) and its error bound.
+    lifted: Option<(Vec3A, Vec3A)>,
+    /// The object a shadow ray leaves and cannot meet again (`Accelerator::light_reaching`).
+    pub leaving: Option<u32>,
+}
+
+impl ShadowStart {
+    /// Whether light from `to_light` (at cosine-times-length `n_dot` to the shading normal)
+    /// can reach the hit. A light behind the shading normal sends nothing: no shadow ray
+    /// needed. Nor does one behind the true surface, except on a smooth mesh, where the
+    /// facet stands in for a curved surface that may still face the light: its shadow ray
+    /// starts from the lifted point, above the facet, and decides.
+    #[inline(always)]
+    pub fn faces(&self, at: &Shading, n_dot: f32, to_light: Vec3A) -> bool {
+        !(n_dot <= 0.0 || (at.ns != at.n && self.lifted.is_none() && at.n.dot(to_light) <= 0.0))
+    }
+}
+
 impl Integrator<'_> {
+    /// Where shadow rays from `at` start.
+    #[inline(always)]
+    pub(super) fn shadow_start(&self, at: &Shading) -> ShadowStart {
+        let object = self.geometry.object(at.object);
+        ShadowStart {
+            lifted: if at.entering && at.ns != at.n {
+                self.accel().shadow_point(at.hit)
+            } else {
+                None
+            },
+            leaving: ((at.entering && object.convex) || object.flat).then_some(at.object),
+        }
+    }
+
+    /// The origin of a shadow ray from `at` toward unit direction `l`.
+    #[inline(always)]
+    pub(super) fn shadow_origin(&self, at: &Shading, start: &ShadowStart, l: Vec3A) -> Vec3A {
+        match start.lifted {
+            // Off the facet's outer side, where the lifted point lies, whichever side of the
+            // facet the light is on.
+            Some((point, error)) => self.leave(
+                &SurfacePoint {
+                    point,
+                    error,
+                    ..at.surface
+                },
+                at.n,
+                at.n,
+            ),
+            None => self.leave(&at.surface, at.n, l),
+        }
+    }
+
     /// The colour of `material`'s texture at `surface`, the point of `hit` (on object
     /// `object`) along `q`.
     #[inline]
@@ -40,9 +94,7 @@ impl Integrator<'_> {
         if !(opacity > 0.0 || material.specular > 0.0) {
             return Vec3A::ZERO;
         }
-        let object = self.geometry.object(at.object);
         let p = at.surface.point;
-        let n = at.n;
         let base = self.texture_color(at.q, at.hit, at.object, material, &at.surface);
         if !material.texture.needs_uv() {
             self.signature.pattern(base);
@@ -51,13 +103,7 @@ impl Integrator<'_> {
         let mut specular = Vec3A::ZERO;
         let accel = self.accel();
         let filters = self.appearance.shadow_filters();
-        // On a smooth mesh, seen from the side its normals face, shadow rays start from the
-        // point lifted off the facet (the lift is outwards only).
-        let lifted = if at.entering && at.ns != n {
-            accel.shadow_point(at.hit)
-        } else {
-            None
-        };
+        let start = self.shadow_start(at);
         for (light_index, light) in self.appearance.lights().iter().enumerate() {
             // The direction to the light (to a point of it, unnormalised), how it fades, and
             // a spotlight's cone.
@@ -94,12 +140,8 @@ impl Integrator<'_> {
                     (sampled - p, Some(sampled), falloff, None)
                 }
             };
-            // A light behind the shading normal sends nothing: no shadow ray needed. Nor
-            // does one behind the true surface, except on a smooth mesh, where the facet
-            // stands in for a curved surface that may still face the light: its shadow
-            // ray starts from the lifted point, above the facet, and decides.
             let n_dot = at.ns.dot(to_light);
-            if n_dot <= 0.0 || (at.ns != n && lifted.is_none() && n.dot(to_light) <= 0.0) {
+            if !start.faces(at, n_dot, to_light) {
                 continue;
             }
             let distance = to_light.length();
@@ -117,27 +159,13 @@ impl Integrator<'_> {
             if spot == 0.0 {
                 continue;
             }
-            let origin = match lifted {
-                // Off the facet's outer side, where the lifted point lies, whichever side
-                // of the facet the light is on.
-                Some((point, error)) => self.leave(
-                    &SurfacePoint {
-                        point,
-                        error,
-                        ..at.surface
-                    },
-                    n,
-                    n,
-                ),
-                None => self.leave(&at.surface, n, l),
-            };
+            let origin = self.shadow_origin(at, &start, l);
             self.counts.shadow += 1;
-            let leaving = ((at.entering && object.convex) || object.flat).then_some(at.object);
             let toward = match point {
                 Some(position) => Toward::Point(position),
                 None => Toward::Direction(l),
             };
-            let visible = accel.light_reaching(light_index, toward, origin, leaving, filters);
+            let visible = accel.light_reaching(light_index, toward, origin, start.leaving, filters);
             self.signature.shadow(visible);
             if visible == Vec3A::ZERO {
                 continue;

@@ -6,14 +6,19 @@
 mod coincident;
 mod first_surface;
 mod guide;
+pub mod kind;
+mod light_sample;
+mod lobes;
 mod local_light;
 mod path;
+mod path_tracer;
 mod reflection;
 mod relief;
 mod signature;
 mod transmission;
 
 pub use guide::Guide;
+pub use kind::IntegratorKind;
 pub use signature::Signature;
 
 use crate::accel::{Accelerator, Hit, Reach};
@@ -103,6 +108,11 @@ pub struct Integrator<'a> {
     /// its subtree and put back after it (kept here, not in each ray's `Path`, which then
     /// still fits in two registers).
     media: Media,
+    /// Which light transport is computed.
+    kind: IntegratorKind,
+    /// The centre of the scene's bounds: the path tracer reads a light without falloff as
+    /// one as bright there (light_sample.rs).
+    scene_center: Option<Vec3A>,
 }
 
 /// What shading knows at a hit.
@@ -156,7 +166,20 @@ impl<'a> Integrator<'a> {
                 .filter(|_| scene.appearance.fog().is_none() && !scene.appearance.any_emitter()),
             stream: SampleStream::new(0, 0, 0),
             media: Media::AIR,
+            kind: IntegratorKind::Whitted,
+            scene_center: scene
+                .geometry
+                .accel()
+                .bounds()
+                .map(|b| Vec3A::from((b.min + b.max) * 0.5))
+                .filter(|c| c.is_finite()),
         }
+    }
+
+    /// Chooses the light transport.
+    pub fn with_kind(mut self, kind: IntegratorKind) -> Self {
+        self.kind = kind;
+        self
     }
 
     /// Chooses how secondary rays leave a surface.
@@ -203,7 +226,12 @@ impl<'a> Integrator<'a> {
                 self.signature.miss();
                 background
             }
-            (reach, _) => self.trace_reaching(&RayQuery::new(ray()), 0.0, reach, Path::PRIMARY),
+            (reach, _) => match self.kind {
+                IntegratorKind::Whitted => {
+                    self.trace_reaching(&RayQuery::new(ray()), 0.0, reach, Path::PRIMARY)
+                }
+                IntegratorKind::Path => self.path_radiance(RayQuery::new(ray()), reach),
+            },
         };
         Sample {
             color: color.into(),
@@ -250,6 +278,13 @@ impl<'a> Integrator<'a> {
     /// The nearest glowing light surface along `ray` in (t_min, t_max): its colour and
     /// distance.
     fn emitter_along(&mut self, ray: &Ray, t_min: f32, t_max: f32) -> Option<(Vec3A, f32)> {
+        let (index, t) = self.light_along(ray, t_min, t_max)?;
+        Some((self.appearance.lights()[index].color.into(), t))
+    }
+
+    /// The nearest visible light surface along `ray` in (t_min, t_max): its index and
+    /// distance.
+    fn light_along(&mut self, ray: &Ray, t_min: f32, t_max: f32) -> Option<(usize, f32)> {
         let mut nearest = None;
         let mut t_max = t_max;
         for (index, light) in self.appearance.lights().iter().enumerate() {
@@ -257,12 +292,12 @@ impl<'a> Integrator<'a> {
                 && let Some(t) = shape.intersect(ray, t_min, t_max)
             {
                 t_max = t;
-                nearest = Some((index, Vec3A::from(light.color), t));
+                nearest = Some((index, t));
             }
         }
-        let (index, color, t) = nearest?;
+        let (index, t) = nearest?;
         self.signature.surface(u32::MAX - index as u32, 0);
-        Some((color, t))
+        Some((index, t))
     }
 
     /// `color`, seen from `dt` (in units of the ray's direction) along `q` through the
@@ -300,38 +335,8 @@ impl<'a> Integrator<'a> {
     /// are passed by reference: moved by value, they were copied through the stack on every
     /// call.)
     fn shade(&mut self, q: &RayQuery, hit: &Hit, leaves: Option<u32>, path: Path) -> Vec3A {
-        self.signature
-            .surface(hit.primitive, hit.shape.detail.part());
-        // The material is a CSG member's own, or the object's.
-        let (object, slot) = self.accel().object_and_material(hit);
-        let material = self.appearance.material(slot);
-        let mut surface = self.accel().surface(q, hit);
-        if let Some(relief) = &material.relief {
-            surface.shading = self.relief_normal(relief, q, hit, object, &surface);
-        }
-        let entering = q.ray.dir.dot(surface.normal) < 0.0;
-        // Shade the side the ray arrives on.
-        let (n, ns) = if entering {
-            (surface.normal, surface.shading)
-        } else {
-            (-surface.normal, -surface.shading)
-        };
-        let at = Shading {
-            q,
-            hit,
-            object,
-            material,
-            medium: if slot == object {
-                material
-            } else {
-                self.appearance.material(object)
-            },
-            n,
-            ns,
-            surface,
-            entering,
-            leaves,
-        };
+        let at = self.shading(q, hit, leaves);
+        let material = at.material;
         // Emission is added unlit (zero for most materials: adding it costs less than a test).
         let mut color = self.local_light(&at) + Vec3A::from(material.emission);
 
@@ -358,6 +363,47 @@ impl<'a> Integrator<'a> {
             color += self.transmission(&at, transparency, path, share) * transparency;
         }
         color
+    }
+
+    /// What shading knows at `hit`, the nearest hit of `q`: its material (a CSG member's
+    /// own, or the object's), its surface point with any relief applied, and the side the ray
+    /// arrives on.
+    #[inline(always)]
+    fn shading<'s>(&mut self, q: &'s RayQuery, hit: &'s Hit, leaves: Option<u32>) -> Shading<'s>
+    where
+        'a: 's,
+    {
+        self.signature
+            .surface(hit.primitive, hit.shape.detail.part());
+        let (object, slot) = self.accel().object_and_material(hit);
+        let material = self.appearance.material(slot);
+        let mut surface = self.accel().surface(q, hit);
+        if let Some(relief) = &material.relief {
+            surface.shading = self.relief_normal(relief, q, hit, object, &surface);
+        }
+        let entering = q.ray.dir.dot(surface.normal) < 0.0;
+        // Shade the side the ray arrives on.
+        let (n, ns) = if entering {
+            (surface.normal, surface.shading)
+        } else {
+            (-surface.normal, -surface.shading)
+        };
+        Shading {
+            q,
+            hit,
+            object,
+            material,
+            medium: if slot == object {
+                material
+            } else {
+                self.appearance.material(object)
+            },
+            n,
+            ns,
+            surface,
+            entering,
+            leaves,
+        }
     }
 
     /// The shares of the light at `at` that are reflected and transmitted: the material's

@@ -7,12 +7,6 @@ use crate::appearance::{Material, reflect, refract};
 use crate::geometry::{Ray, RayQuery};
 use glam::Vec3A;
 
-/// Whether light through `material` changes direction.
-#[inline]
-fn bends(material: &Material) -> bool {
-    matches!(material.eta, Some(eta) if eta != 1.0)
-}
-
 impl Integrator<'_> {
     /// Whether a hit on `material` that transmits `transparency` of the light along `path`
     /// spawns a transmitted ray: it is transparent, the ray would weigh enough to matter,
@@ -27,7 +21,7 @@ impl Integrator<'_> {
     ) -> bool {
         transparency > 0.0
             && path.weight * transparency >= self.min_weight
-            && if bends(material) {
+            && if material.bends() {
                 bounces_left
             } else {
                 path.straight < MAX_STRAIGHT_CROSSINGS
@@ -57,7 +51,7 @@ impl Integrator<'_> {
         } else {
             here.left(at.object)
         };
-        let color = if bends(material) {
+        let color = if material.bends() {
             let ratio = self.eta_ratio(at);
             // Past the critical angle the transmitted light is reflected inside; either
             // way the ray must go where the true surface says.

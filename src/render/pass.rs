@@ -57,7 +57,8 @@ pub fn render_pass(
                 return None;
             }
             let mut integrator = Integrator::new(scene, settings.min_weight)
-                .with_self_intersection(settings.self_intersection);
+                .with_self_intersection(settings.self_intersection)
+                .with_kind(settings.integrator);
             let mut traced = 0u64;
             for (row, row_pixels) in pixels.chunks_mut(width).enumerate() {
                 let local_y = band_index * BAND_ROWS + row;

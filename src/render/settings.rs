@@ -1,6 +1,6 @@
 //! What a render is asked to do, checked before any work starts.
 
-use crate::integrator::SelfIntersection;
+use crate::integrator::{IntegratorKind, SelfIntersection};
 use crate::sampler::SampleLayout;
 use thiserror::Error;
 
@@ -29,6 +29,8 @@ pub struct RenderSettings {
     /// Keep subsamples brighter than white, for a linear HDR file (EXR, PFM); off, each is
     /// clamped to the 0..1 a display shows before it is summed, as the seed does.
     pub high_dynamic_range: bool,
+    /// Which light transport is computed.
+    pub integrator: IntegratorKind,
 }
 
 /// Stop refining a pixel once its subsamples agree.
@@ -76,6 +78,7 @@ impl RenderSettings {
             adaptive: None,
             self_intersection: SelfIntersection::ErrorBound,
             high_dynamic_range: false,
+            integrator: IntegratorKind::Whitted,
         }
     }
 
@@ -134,6 +137,7 @@ impl RenderSettings {
     ) -> Result<Self, SettingsError> {
         let settings = Self {
             samples: defaults.samples,
+            integrator: defaults.integrator,
             ..Self::new(
                 width.unwrap_or(defaults.width),
                 height.unwrap_or(defaults.height),

@@ -55,6 +55,8 @@ pub struct RenderDefaults {
     pub samples: Option<u32>,
     /// How the image's linear colours are stored in a file (`encoding`, `exposure`).
     pub encoding: crate::color::Encoding,
+    /// Which light transport the scene is rendered with.
+    pub integrator: crate::integrator::kind::IntegratorKind,
 }
 
 impl Default for RenderDefaults {
@@ -66,6 +68,7 @@ impl Default for RenderDefaults {
             max_depth: 5,
             samples: None,
             encoding: crate::color::Encoding::default(),
+            integrator: crate::integrator::kind::IntegratorKind::Whitted,
         }
     }
 }

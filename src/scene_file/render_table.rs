@@ -6,6 +6,7 @@ use super::fixed_array::Fixed;
 use super::textures::Images;
 use super::validator::{Item, V3, Validator};
 use crate::appearance::{Background, Fog, FogKind};
+use crate::integrator::IntegratorKind;
 use crate::limits;
 use crate::messages::{number, quoted};
 use crate::scene::RenderDefaults;
@@ -36,6 +37,7 @@ pub(super) struct RenderDef {
     pub(super) ambient: Option<V3>,
     pub(super) encoding: Option<String>,
     pub(super) exposure: Option<f32>,
+    pub(super) integrator: Option<String>,
 }
 
 /// A `background` value, by form.
@@ -100,6 +102,7 @@ impl Validator<'_> {
                 )?),
             },
             encoding: self.encoding(&at, r)?,
+            integrator: self.integrator(&at, r)?,
         };
         let ambient = self.radiance(&at, "ambient", r.ambient.unwrap_or(Fixed([0.2; 3])))?;
         Ok((render, ambient))
@@ -139,6 +142,23 @@ impl Validator<'_> {
             ));
         }
         Ok(Encoding { transfer, exposure })
+    }
+
+    /// The `[render]` table's `integrator`: "whitted" (the default) or "path".
+    fn integrator(&self, at: &Item, r: &RenderDef) -> Result<IntegratorKind, SceneError> {
+        match r.integrator.as_deref() {
+            None => Ok(IntegratorKind::default()),
+            Some(name) => IntegratorKind::from_name(name).ok_or_else(|| {
+                self.field_error(
+                    at,
+                    "integrator",
+                    format!(
+                        "`integrator` must be \"whitted\" (the default) or \"path\", got {}",
+                        quoted(name)
+                    ),
+                )
+            }),
+        }
     }
 
     /// The `[render]` table's `background`: black when it has none.

@@ -75,6 +75,7 @@ impl App {
     pub(super) fn settings(&self, width: u32, height: u32) -> RenderSettings {
         let mut s = RenderSettings::new(width, height, self.panel.aa);
         s.samples = self.panel.samples;
+        s.integrator = self.panel.integrator;
         if self.panel.adaptive {
             s.adaptive = Some(AdaptiveSettings {
                 tolerance: self.panel.tolerance,

@@ -154,6 +154,7 @@ impl App {
             self.panel.initial_camera = scene.camera;
             self.input.step = step_for(&scene);
             self.panel.samples = scene.render.samples;
+            self.panel.integrator = scene.render.integrator;
         }
         let what = match (&loaded.animation, same_file) {
             (Some(_), true) => format!("frame {} of", loaded.frame),

@@ -140,7 +140,9 @@ pub fn run(launch: Launch) -> Result<()> {
     let mut app = App {
         proxy: event_loop.create_proxy(),
         screenshot_dir,
-        panel: PanelState::new(scene, aa).denoised(denoise),
+        panel: PanelState::new(scene, aa)
+            .denoised(denoise)
+            .with_integrator(probe.integrator),
         input: CameraInput::new(step),
         document,
         loads,

@@ -19,6 +19,7 @@ use super::history::EditKey;
 use super::render_thread::Status;
 use egui::RichText;
 use prism::camera::Camera;
+use prism::integrator::IntegratorKind;
 use prism::render::View;
 use prism::scene::{EditError, ObjectPlacement, Scene};
 use std::ops::RangeInclusive;
@@ -119,6 +120,8 @@ pub struct PanelState {
     pub view: View,
     /// Whether the image is shown denoised.
     pub denoise: bool,
+    /// The light transport rendered.
+    pub integrator: IntegratorKind,
     /// The accumulation's course since it last restarted: seconds, samples per pixel and
     /// mean error estimate after each pass.
     pub convergence: Vec<[f64; 3]>,
@@ -139,6 +142,7 @@ impl PanelState {
             camera: scene.camera,
             initial_camera: scene.camera,
             samples: scene.render.samples,
+            integrator: scene.render.integrator,
             step: 1.0,
             scene,
             aa,
@@ -156,6 +160,13 @@ impl PanelState {
             scale_per_axis: false,
             placing_group: None,
         }
+    }
+
+    /// The panel rendering with `kind` from the start (the command line's choice, or the
+    /// scene's).
+    pub fn with_integrator(mut self, kind: IntegratorKind) -> Self {
+        self.integrator = kind;
+        self
     }
 
     /// The panel with the image shown denoised (or not) from the start.

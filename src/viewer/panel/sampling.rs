@@ -1,11 +1,37 @@
-//! The panel's sampling controls: the anti-aliasing level or samples per pixel, and
-//! adaptive sampling.
+//! The panel's sampling controls: the light transport, the anti-aliasing level or samples
+//! per pixel, and adaptive sampling.
 
 use super::{Changes, PanelState, SLIDERS};
 use egui::{DragValue, RichText, Slider, SliderClamping};
+use prism::integrator::IntegratorKind;
 
 impl PanelState {
     pub(super) fn sampling(&mut self, ui: &mut egui::Ui, changes: &mut Changes) {
+        ui.label(RichText::new("Light transport").strong());
+        let transport = ui
+            .horizontal(|ui| {
+                IntegratorKind::ALL
+                    .into_iter()
+                    .map(|kind| {
+                        let label = match kind {
+                            IntegratorKind::Whitted => "Whitted",
+                            IntegratorKind::Path => "path traced",
+                        };
+                        ui.radio_value(&mut self.integrator, kind, label)
+                            .on_hover_text(match kind {
+                                IntegratorKind::Whitted => {
+                                    "direct light, an ambient term, mirrors and glass"
+                                }
+                                IntegratorKind::Path => {
+                                    "light that bounces between surfaces (no ambient term); \
+                                     noisy at first, it converges pass by pass"
+                                }
+                            })
+                            .changed()
+                    })
+                    .fold(false, |a, b| a | b)
+            })
+            .inner;
         ui.label(RichText::new("Anti-aliasing").strong());
         let aa = ui.add(
             Slider::new(&mut self.aa, SLIDERS.aa)
@@ -37,6 +63,7 @@ impl PanelState {
         if !self.tolerance.is_finite() || self.tolerance <= 0.0 {
             self.tolerance = prism::render::AdaptiveSettings::default().tolerance;
         }
-        changes.settings = aa.changed() || samples || adaptive.changed() || tol.changed();
+        changes.settings =
+            transport || aa.changed() || samples || adaptive.changed() || tol.changed();
     }
 }

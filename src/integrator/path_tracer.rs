@@ -1,0 +1,236 @@
+//! The path tracer: one path per subsample from the camera, scattered at each hit by the
+//! material's lobes (lobes.rs), with next-event estimation toward every light
+//! (light_sample.rs) and multiple importance sampling (the power heuristic) between a
+//! light's own samples and scattered rays that hit its visible surface.
+//!
+//! Bounces are counted as Whitted's are: the light reaching vertex `max_depth` directly
+//! still counts, and a ray scattered from it may still meet a glowing surface, so the
+//! longest path has `max_depth` + 2 segments (Mitsuba's `max_depth` of that number). A
+//! straight crossing of a clear surface is not a bounce. Emissive objects are found by
+//! scattered rays only (weight 1); the background is reached the same way.
+
+use super::Integrator;
+use super::lobes::{LobeInputs, Lobes, Scatter};
+use super::path::MAX_STRAIGHT_CROSSINGS;
+use crate::accel::Reach;
+use crate::appearance::{reflect, refract};
+use crate::geometry::{Ray, RayQuery};
+use glam::Vec3A;
+
+/// Bounces after which a path may be ended at random (Russian roulette), in proportion to
+/// how little it still carries.
+const ROULETTE_AFTER: u32 = 3;
+
+/// The power heuristic's weight for a technique of density `a` against one of `b`.
+#[inline]
+fn power_heuristic(a: f32, b: f32) -> f32 {
+    let (a2, b2) = (a * a, b * b);
+    if a2 + b2 > 0.0 { a2 / (a2 + b2) } else { 0.0 }
+}
+
+impl Integrator<'_> {
+    /// The radiance arriving along `q` (of unit direction) from the scene, by one path;
+    /// `reach` is what the ray can hit first.
+    pub(super) fn path_radiance(&mut self, q: RayQuery, reach: Reach) -> Vec3A {
+        let radiance = self.follow_path(q, reach);
+        // No NaN or infinity reaches the film, whatever a degenerate vertex produced.
+        if radiance.is_finite() {
+            radiance
+        } else {
+            Vec3A::ZERO
+        }
+    }
+
+    fn follow_path(&mut self, mut q: RayQuery, mut reach: Reach) -> Vec3A {
+        let max_depth = self.appearance.max_depth();
+        let mut radiance = Vec3A::ZERO;
+        let mut throughput = Vec3A::ONE;
+        let mut t_min = 0.0f32;
+        let (mut depth, mut straight) = (0u32, 0u32);
+        // Where the ray left and the density its direction was drawn with, when a light's
+        // surface it meets must be weighed against that light's own samples; None after
+        // the camera or a perfect mirror or refraction, which no light sample can follow.
+        let mut scattered_from: Option<(Vec3A, f32)> = None;
+        loop {
+            let (hit, leaves) = match (reach, self.media.current()) {
+                (Reach::After(t), Some(medium)) => self.nearest_in_medium(&q, t, medium),
+                (reach, _) => (self.accel().nearest_hit(&q, reach), None),
+            };
+            let t_hit = hit.map_or(f32::INFINITY, |h| h.shape.t);
+            let light_hit = if self.appearance.any_emitter() {
+                self.light_along(&q.ray, t_min, t_hit)
+            } else {
+                None
+            };
+            let t_end = light_hit.map_or(t_hit, |(_, t)| t);
+            // The medium along the segment: what it keeps of the light beyond, and adds.
+            let added = self.through_medium(Vec3A::ZERO, &q, t_end - t_min);
+            let kept = self.through_medium(Vec3A::ONE, &q, t_end - t_min) - added;
+            radiance += throughput * added;
+            throughput *= kept;
+            if let Some((index, t)) = light_hit {
+                let light = &self.appearance.lights()[index];
+                let weight = match scattered_from {
+                    None => 1.0,
+                    Some((p, pdf)) => power_heuristic(pdf, self.light_pdf(light, p, q.ray.dir, t)),
+                };
+                radiance += throughput * self.light_radiance(light) * weight;
+                break;
+            }
+            let Some(hit) = hit else {
+                radiance += throughput * self.miss(q.ray.dir);
+                break;
+            };
+            let at = self.shading(&q, &hit, leaves);
+            radiance += throughput * Vec3A::from(at.material.emission);
+            if depth > max_depth {
+                break;
+            }
+            let material = at.material;
+            let wo = -q.ray.dir;
+            let (reflected, transmitted) = self.split(&at);
+            let base = if material.diffuse > 0.0 && material.transparency < 1.0 {
+                self.texture_color(at.q, at.hit, at.object, material, &at.surface)
+            } else {
+                Vec3A::ZERO
+            };
+            let lobes = Lobes::new(
+                LobeInputs {
+                    diffuse: base * (material.diffuse * (1.0 - material.transparency)),
+                    specular: material.specular,
+                    shininess: material.shininess,
+                    reflected,
+                    transmitted,
+                    conductor: material.conductor.map(Vec3A::from),
+                    roughness: material.roughness,
+                },
+                at.ns,
+                at.n,
+                wo,
+            );
+            if lobes.spreads() {
+                radiance += throughput * self.direct_light(&at, &lobes);
+            }
+            if depth >= ROULETTE_AFTER {
+                let carry = throughput.max_element().min(0.95);
+                if self.stream.next_2d().0 >= carry {
+                    break;
+                }
+                throughput /= carry;
+            }
+            let d = q.ray.dir;
+            let (dir, weight) = match lobes.sample(self.stream.next_2d()) {
+                Scatter::Absorbed => break,
+                Scatter::Spread { wi, weight, pdf } => {
+                    scattered_from = Some((at.surface.point, pdf));
+                    (wi, weight)
+                }
+                Scatter::Mirror { weight } => {
+                    scattered_from = None;
+                    (self.turned(&at, |n| (reflect(d, n), true)), weight)
+                }
+                Scatter::Transmit { weight } if !material.bends() => {
+                    // Straight on along the same ray, past this hit; not a bounce.
+                    straight += 1;
+                    if straight > MAX_STRAIGHT_CROSSINGS {
+                        break;
+                    }
+                    throughput *= weight;
+                    self.media = self.media_beyond(&at);
+                    reach = match self.inside(&at, d) {
+                        Some(solid) => Reach::Inside {
+                            solid,
+                            t_min: hit.shape.t,
+                        },
+                        None => Reach::After(hit.shape.t),
+                    };
+                    t_min = hit.shape.t;
+                    continue;
+                }
+                Scatter::Transmit { weight } => {
+                    scattered_from = None;
+                    let ratio = self.eta_ratio(&at);
+                    // Past the critical angle the light is reflected inside instead.
+                    let dir = self.turned(&at, |n| match refract(d, n, ratio) {
+                        Some(dir) => (dir, false),
+                        None => (reflect(d, n), true),
+                    });
+                    if dir.dot(at.n) < 0.0 {
+                        self.media = self.media_beyond(&at);
+                    }
+                    (dir, weight)
+                }
+            };
+            throughput *= weight;
+            if throughput == Vec3A::ZERO {
+                break;
+            }
+            self.counts.secondary += 1;
+            depth += 1;
+            straight = 0;
+            let origin = self.leave(&at.surface, at.n, dir);
+            reach = match self.inside(&at, dir) {
+                Some(solid) => Reach::Inside { solid, t_min: 0.0 },
+                None => Reach::After(0.0),
+            };
+            q = RayQuery::new(Ray::new(origin, dir));
+            t_min = 0.0;
+        }
+        radiance
+    }
+
+    /// The light reaching `at` straight from every light and scattered toward the viewer
+    /// by `lobes`: one shadow ray per light, weighed against scattered rays that could hit
+    /// the light's surface.
+    fn direct_light(&mut self, at: &super::Shading, lobes: &Lobes) -> Vec3A {
+        let start = self.shadow_start(at);
+        let p = at.surface.point;
+        let accel = self.accel();
+        let filters = self.appearance.path_shadow_filters();
+        let mut sum = Vec3A::ZERO;
+        for (index, light) in self.appearance.lights().iter().enumerate() {
+            let u = self.stream.next_2d();
+            let Some(sample) = self.sample_light(light, p, u) else {
+                continue;
+            };
+            let cos = at.ns.dot(sample.wi);
+            if !start.faces(at, cos, sample.wi) {
+                continue;
+            }
+            let (f, scatter_pdf) = lobes.eval(sample.wi);
+            if f == Vec3A::ZERO {
+                continue;
+            }
+            let origin = self.shadow_origin(at, &start, sample.wi);
+            self.counts.shadow += 1;
+            let visible =
+                accel.light_reaching(index, sample.toward, origin, start.leaving, filters);
+            self.signature.shadow(visible);
+            if visible == Vec3A::ZERO {
+                continue;
+            }
+            // A light no scattered ray can meet (a point, a direction, a hidden surface)
+            // is found by its own samples alone.
+            let weight = if sample.pdf > 0.0 && light.emitter().is_some() {
+                power_heuristic(sample.pdf, scatter_pdf)
+            } else {
+                1.0
+            };
+            sum += visible * sample.light * f * (cos * weight);
+        }
+        sum
+    }
+
+    /// The media a ray that crosses the surface at `at` travels in beyond it: the object's
+    /// entered or left, and a touching medium left there too (coincident.rs).
+    fn media_beyond(&self, at: &super::Shading) -> super::path::Media {
+        let here = at
+            .leaves
+            .map_or(self.media, |touching| self.media.left(touching));
+        if at.entering {
+            here.entered(at.object)
+        } else {
+            here.left(at.object)
+        }
+    }
+}

@@ -1,0 +1,208 @@
+//! prism's path tracer against Mitsuba 3's (`scalar_rgb`, its `path` integrator), numbers
+//! for numbers, on a Lambertian room lit by a glowing sphere, a glowing rectangle and an
+//! inverse-square point light, and on smooth glass and a rough metal under the rectangle.
+//! tests/mitsuba/render.py writes each scene for Mitsuba with the lights in the physical
+//! units docs/effects.md gives for prism's.
+//!
+//! Both images are averaged over 8×8-pixel blocks, taking out most of the noise; then each
+//! channel's mean must agree within 2%, and every block within 5% of the image's mean
+//! brightness. The same comparison with Mitsuba one bounce short must fail: the tolerance
+//! tells a wrong image from a right one.
+//!
+//! Mitsuba is a Python package: PRISM_MITSUBA_PYTHON names a Python that imports it
+//! (`.ci/run` makes one), else `python3` is tried. Without it the test fails, unless
+//! PRISM_SKIP_MISSING_TOOLS is set.
+
+mod common;
+
+use glam::Vec3;
+use prism::integrator::IntegratorKind;
+use prism::render::{RenderSettings, render};
+use prism::scene::PreparedScene;
+use prism::scene_file::parse_scene;
+use std::path::Path;
+use std::process::Command;
+use std::sync::Arc;
+
+const WIDTH: u32 = 64;
+const HEIGHT: u32 = 48;
+const BLOCK: u32 = 8;
+/// Paths per pixel in both renderers.
+const SAMPLES: u32 = 4096;
+/// prism's bounces; Mitsuba's `max_depth` is this + 2 (path_tracer.rs).
+const MAX_DEPTH: u32 = 2;
+
+/// The room of every scene, as render.py's `room()`: x and z in −1..1, y in 0..2, open at
+/// the front.
+const ROOM: &str = "[camera]\neye = [0, 1, 3.4]\nlook_at = [0, 1, 0]\nfov = 40\n\
+    [render]\nambient = [0, 0, 0]\nintegrator = \"path\"\n\
+    [materials.white]\ncolor = [0.7, 0.7, 0.7]\nspecular = 0\n\
+    [materials.red]\ncolor = [0.6, 0.1, 0.1]\nspecular = 0\n\
+    [materials.green]\ncolor = [0.1, 0.5, 0.1]\nspecular = 0\n\
+    [[boxes]]\nmin = [-1.1, -0.1, -1.1]\nmax = [1.1, 0, 1.1]\nmaterial = \"white\"\n\
+    [[boxes]]\nmin = [-1.1, 2, -1.1]\nmax = [1.1, 2.1, 1.1]\nmaterial = \"white\"\n\
+    [[boxes]]\nmin = [-1.1, -0.1, -1.1]\nmax = [1.1, 2.1, -1]\nmaterial = \"white\"\n\
+    [[boxes]]\nmin = [-1.1, -0.1, -1.1]\nmax = [-1, 2.1, 1.1]\nmaterial = \"red\"\n\
+    [[boxes]]\nmin = [1, -0.1, -1.1]\nmax = [1.1, 2.1, 1.1]\nmaterial = \"green\"\n\
+    [[boxes]]\nmin = [-0.7, 0, -0.6]\nmax = [-0.2, 0.8, -0.1]\nmaterial = \"white\"\n";
+
+macro_rules! rectangle {
+    () => {
+        "[[lights]]\ntype = \"area\"\ncorner = [-0.25, 1.8, -0.25]\nedge_u = [0.5, 0, 0]\n\
+         edge_v = [0, 0, 0.5]\nfalloff = \"inverse_square\"\nintensity = 1\n"
+    };
+}
+
+/// The scenes by render.py's names: what each adds to the room.
+const SCENES: [(&str, &str); 4] = [
+    (
+        "sphere_light",
+        "[[lights]]\ntype = \"sphere\"\nposition = [0, 1.6, 0]\nradius = 0.15\n\
+         color = [1, 0.9, 0.8]\nfalloff = \"inverse_square\"\nintensity = 1\n",
+    ),
+    ("rectangle_light", rectangle!()),
+    (
+        "point_light",
+        "[[lights]]\nposition = [0, 1.7, 0.2]\ncolor = [1, 0.95, 0.9]\n\
+         falloff = \"inverse_square\"\nintensity = 2\n",
+    ),
+    (
+        "glass_and_metal",
+        concat!(
+            rectangle!(),
+            "[materials.glass]\ncolor = [1, 1, 1]\ndiffuse = 0\nspecular = 0\ntransparency = 1\n\
+         eta = 1.5\nfresnel = true\n\
+         [materials.metal]\ncolor = [1, 1, 1]\ndiffuse = 0\nspecular = 0\nreflectivity = 0.9\n\
+         roughness = 0.5\n\
+         [[spheres]]\ncenter = [0.4, 0.35, 0.3]\nradius = 0.35\nmaterial = \"glass\"\n\
+         [[spheres]]\ncenter = [-0.45, 1.1, -0.35]\nradius = 0.3\nmaterial = \"metal\"\n"
+        ),
+    ),
+];
+
+/// The Python that runs Mitsuba, if one is here.
+fn mitsuba_python() -> Option<String> {
+    let python = std::env::var("PRISM_MITSUBA_PYTHON").unwrap_or_else(|_| "python3".into());
+    let imports = Command::new(&python)
+        .args(["-c", "import mitsuba"])
+        .output()
+        .is_ok_and(|o| o.status.success());
+    if imports {
+        return Some(python);
+    }
+    assert!(
+        std::env::var_os(common::SKIP_MISSING_TOOLS).is_some(),
+        "the Mitsuba comparison needs Mitsuba 3 (`pip install mitsuba`), which {python} does \
+         not import: run .ci/run, which installs it, set PRISM_MITSUBA_PYTHON to a Python that \
+         does, or set {}=1 to skip it",
+        common::SKIP_MISSING_TOOLS
+    );
+    eprintln!("skipped the Mitsuba comparison: {python} does not import mitsuba");
+    None
+}
+
+/// Linear RGB, row by row.
+type Image = Vec<Vec3>;
+
+fn mitsuba(python: &str, dir: &common::Dir, name: &str, samples: u32, depth: u32) -> Image {
+    let out = dir.path(&format!("{name}_{depth}.exr"));
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mitsuba/render.py");
+    let run = Command::new(python)
+        .arg(&script)
+        .args([name, &samples.to_string(), &(depth + 2).to_string()])
+        .arg(&out)
+        .output()
+        .expect("python runs");
+    assert!(
+        run.status.success(),
+        "Mitsuba failed on {name}: {}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let image = image::open(&out)
+        .expect("Mitsuba's EXR reads")
+        .into_rgb32f();
+    assert_eq!(image.dimensions(), (WIDTH, HEIGHT));
+    image.pixels().map(|p| Vec3::from(p.0)).collect()
+}
+
+fn prism(name: &str, additions: &str, samples: u32) -> Image {
+    let scene = parse_scene(
+        &format!("{ROOM}{additions}").replace(
+            "[render]\n",
+            &format!("[render]\nmax_depth = {MAX_DEPTH}\n"),
+        ),
+        Path::new(&format!("{name}.toml")),
+        Path::new("."),
+    )
+    .unwrap();
+    assert_eq!(scene.render.integrator, IntegratorKind::Path);
+    let mut settings =
+        RenderSettings::for_scene(&scene.render, Some(WIDTH), Some(HEIGHT), None).unwrap();
+    settings.samples = Some(samples);
+    settings.high_dynamic_range = true;
+    settings.min_weight = 0.0;
+    let prepared = Arc::new(PreparedScene::new(&scene));
+    let job = render(prepared, scene.camera, settings, |_, _| {});
+    let acc = job.accumulator();
+    (0..HEIGHT)
+        .flat_map(|y| (0..WIDTH).map(move |x| (x, y)))
+        .map(|(x, y)| acc.mean(x, y))
+        .collect()
+}
+
+/// The image averaged over BLOCK × BLOCK blocks.
+fn blocks(image: &Image) -> Vec<Vec3> {
+    let (bw, bh) = (WIDTH / BLOCK, HEIGHT / BLOCK);
+    let mut out = vec![Vec3::ZERO; (bw * bh) as usize];
+    for y in 0..HEIGHT {
+        for x in 0..WIDTH {
+            out[((y / BLOCK) * bw + x / BLOCK) as usize] += image[(y * WIDTH + x) as usize];
+        }
+    }
+    out.iter().map(|c| *c / (BLOCK * BLOCK) as f32).collect()
+}
+
+/// How far `a` is from the reference `b`: the worst channel's relative difference of the
+/// means, and the worst block's difference relative to the reference's mean brightness.
+fn difference(a: &Image, b: &Image) -> (f32, f32) {
+    let mean = |i: &Image| i.iter().copied().sum::<Vec3>() / i.len() as f32;
+    let (ma, mb) = (mean(a), mean(b));
+    let means = ((ma - mb).abs() / mb).max_element();
+    let level = (mb.x + mb.y + mb.z) / 3.0;
+    let worst_block = blocks(a)
+        .iter()
+        .zip(blocks(b))
+        .map(|(x, y)| (*x - y).abs().max_element())
+        .fold(0.0f32, f32::max);
+    (means, worst_block / level)
+}
+
+#[test]
+fn path_tracer_matches_mitsuba() {
+    let Some(python) = mitsuba_python() else {
+        return;
+    };
+    let dir = common::Dir::new();
+    let mut report = Vec::new();
+    for (name, additions) in SCENES {
+        let ours = prism(name, additions, SAMPLES);
+        let reference = mitsuba(&python, &dir, name, SAMPLES, MAX_DEPTH);
+        let (means, blocks) = difference(&ours, &reference);
+        report.push(format!("{name}: means {means:.4}, blocks {blocks:.4}"));
+        assert!(
+            means < 0.02 && blocks < 0.05,
+            "{name} differs from Mitsuba: {report:?}"
+        );
+        // One bounce short, Mitsuba's image is told apart.
+        let short = mitsuba(&python, &dir, name, SAMPLES, MAX_DEPTH.saturating_sub(1));
+        let (means, blocks) = difference(&ours, &short);
+        report.push(format!(
+            "{name} one short: means {means:.4}, blocks {blocks:.4}"
+        ));
+        assert!(
+            means >= 0.02 || blocks >= 0.05,
+            "{name}: one bounce fewer passes too (means {means:.4}, blocks {blocks:.4})"
+        );
+    }
+    eprintln!("{report:#?}");
+}
