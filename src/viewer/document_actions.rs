@@ -153,8 +153,7 @@ impl App {
             self.history = History::new();
             self.panel.initial_camera = scene.camera;
             self.input.step = step_for(&scene);
-            self.panel.samples = scene.render.samples;
-            self.panel.integrator = scene.render.integrator;
+            self.panel.take_sampling(&scene.render);
         }
         let what = match (&loaded.animation, same_file) {
             (Some(_), true) => format!("frame {} of", loaded.frame),

@@ -98,6 +98,9 @@ pub struct FileStatus {
     pub frame: u32,
 }
 
+/// The samples per pixel the panel sets when path tracing is switched on and none were set.
+const PATH_SAMPLES: u32 = 256;
+
 pub struct PanelState {
     pub scene: Scene,
     pub camera: Camera,
@@ -122,6 +125,8 @@ pub struct PanelState {
     pub denoise: bool,
     /// The light transport rendered.
     pub integrator: IntegratorKind,
+    /// Whether `samples` was set by switching path tracing on (and goes with it).
+    samples_for_path: bool,
     /// The accumulation's course since it last restarted: seconds, samples per pixel and
     /// mean error estimate after each pass.
     pub convergence: Vec<[f64; 3]>,
@@ -143,6 +148,7 @@ impl PanelState {
             initial_camera: scene.camera,
             samples: scene.render.samples,
             integrator: scene.render.integrator,
+            samples_for_path: false,
             step: 1.0,
             scene,
             aa,
@@ -165,8 +171,38 @@ impl PanelState {
     /// The panel rendering with `kind` from the start (the command line's choice, or the
     /// scene's).
     pub fn with_integrator(mut self, kind: IntegratorKind) -> Self {
-        self.integrator = kind;
+        self.set_integrator(kind);
         self
+    }
+
+    /// Renders with `kind` from now on.
+    fn set_integrator(&mut self, kind: IntegratorKind) {
+        self.integrator = kind;
+        self.integrator_changed();
+    }
+
+    /// Takes a newly opened file's samples per pixel and light transport.
+    pub fn take_sampling(&mut self, render: &prism::scene::RenderDefaults) {
+        self.samples = render.samples;
+        self.samples_for_path = false;
+        self.set_integrator(render.integrator);
+    }
+
+    /// Path tracing refines past the N×N grid, which suits Whitted's edges but leaves a lit
+    /// room grainy: switched on with no count of samples set, it sets `PATH_SAMPLES` (shown
+    /// and editable in the panel); back to Whitted, a count it set goes back.
+    fn integrator_changed(&mut self) {
+        match (self.integrator, self.samples) {
+            (IntegratorKind::Path, None) => {
+                self.samples = Some(PATH_SAMPLES);
+                self.samples_for_path = true;
+            }
+            (IntegratorKind::Whitted, Some(PATH_SAMPLES)) if self.samples_for_path => {
+                self.samples = None;
+                self.samples_for_path = false;
+            }
+            _ => {}
+        }
     }
 
     /// The panel with the image shown denoised (or not) from the start.

@@ -32,6 +32,9 @@ impl PanelState {
                     .fold(false, |a, b| a | b)
             })
             .inner;
+        if transport {
+            self.integrator_changed();
+        }
         ui.label(RichText::new("Anti-aliasing").strong());
         let aa = ui.add(
             Slider::new(&mut self.aa, SLIDERS.aa)
@@ -51,6 +54,9 @@ impl PanelState {
                 c.changed() || n.changed()
             })
             .inner;
+        if samples {
+            self.samples_for_path = false;
+        }
         self.samples = custom.then_some(count);
         let adaptive = ui.checkbox(&mut self.adaptive, "adaptive sampling");
         let tol = ui.add_enabled(
