@@ -1,6 +1,7 @@
 //! prism's path tracer against Mitsuba 3's (`scalar_rgb`, its `path` integrator), numbers
 //! for numbers, on a Lambertian room lit by a glowing sphere, a glowing rectangle and an
-//! inverse-square point light, and on smooth glass and a rough metal under the rectangle.
+//! inverse-square point light, on smooth glass and a rough metal under the rectangle, and
+//! on matte, metal and glass balls lit only by a sky image with a small sun.
 //! tests/mitsuba/render.py writes each scene for Mitsuba with the lights in the physical
 //! units docs/effects.md gives for prism's.
 //!
@@ -80,6 +81,50 @@ const SCENES: [(&str, &str); 4] = [
     ),
 ];
 
+/// Matte, rough metal and glass balls on a grey floor under the sky `write_sky` paints, as
+/// render.py's `environment`.
+const ENVIRONMENT: &str = "[camera]\neye = [0, 1.2, 4]\nlook_at = [0, 0.5, 0]\nfov = 40\n\
+    [render]\nintegrator = \"path\"\nambient = [0, 0, 0]\nbackground = { image = \"sky.png\" }\n\
+    [materials.floor]\ncolor = [0.5, 0.5, 0.5]\nspecular = 0\n\
+    [materials.matte]\ncolor = [0.8, 0.8, 0.8]\nspecular = 0\n\
+    [materials.metal]\ncolor = [1, 1, 1]\ndiffuse = 0\nspecular = 0\nreflectivity = 0.9\n\
+    roughness = 0.5\n\
+    [materials.glass]\ncolor = [1, 1, 1]\ndiffuse = 0\nspecular = 0\ntransparency = 1\n\
+    eta = 1.5\nfresnel = true\n\
+    [[boxes]]\nmin = [-3, -0.1, -3]\nmax = [3, 0, 3]\nmaterial = \"floor\"\n\
+    [[spheres]]\ncenter = [-1.1, 0.5, 0]\nradius = 0.5\nmaterial = \"matte\"\n\
+    [[spheres]]\ncenter = [0, 0.5, -0.3]\nradius = 0.5\nmaterial = \"metal\"\n\
+    [[spheres]]\ncenter = [1.1, 0.5, 0]\nradius = 0.5\nmaterial = \"glass\"\n";
+
+/// A 256×128 latitude-longitude sky, as sky.png for prism and sky.exr (the same values
+/// over 255, linear) for Mitsuba: a blue sky paling to the horizon over brown ground, a
+/// small sun four times brighter than the sky's brightest, high to the right, and a red
+/// patch low on the other side.
+fn write_sky(dir: &common::Dir) {
+    let (w, h) = (256u32, 128u32);
+    let sky = image::RgbImage::from_fn(w, h, |x, y| {
+        let v = (y as f32 + 0.5) / h as f32;
+        let sun = (179..185).contains(&x) && (27..32).contains(&y);
+        let red = (60..70).contains(&x) && (50..64).contains(&y);
+        let c = if sun {
+            [255.0, 250.0, 235.0]
+        } else if red {
+            [200.0, 20.0, 20.0]
+        } else if v < 0.5 {
+            let t = v / 0.5;
+            [20.0 + 40.0 * t, 30.0 + 35.0 * t, 60.0 + 15.0 * t]
+        } else {
+            [40.0, 33.0, 25.0]
+        };
+        image::Rgb(c.map(|c| c as u8))
+    });
+    sky.save(dir.path("sky.png")).unwrap();
+    let linear = image::Rgb32FImage::from_fn(w, h, |x, y| {
+        image::Rgb(sky.get_pixel(x, y).0.map(|c| c as f32 / 255.0))
+    });
+    linear.save(dir.path("sky.exr")).unwrap();
+}
+
 /// The Python that runs Mitsuba, if one is here.
 fn mitsuba_python() -> Option<String> {
     let python = std::env::var("PRISM_MITSUBA_PYTHON").unwrap_or_else(|_| "python3".into());
@@ -111,6 +156,7 @@ fn mitsuba(python: &str, dir: &common::Dir, name: &str, samples: u32, depth: u32
         .arg(&script)
         .args([name, &samples.to_string(), &(depth + 2).to_string()])
         .arg(&out)
+        .arg(dir.path("sky.exr"))
         .output()
         .expect("python runs");
     assert!(
@@ -125,14 +171,14 @@ fn mitsuba(python: &str, dir: &common::Dir, name: &str, samples: u32, depth: u32
     image.pixels().map(|p| Vec3::from(p.0)).collect()
 }
 
-fn prism(name: &str, additions: &str, samples: u32) -> Image {
+fn prism(dir: &common::Dir, name: &str, text: &str, samples: u32) -> Image {
     let scene = parse_scene(
-        &format!("{ROOM}{additions}").replace(
+        &text.replace(
             "[render]\n",
             &format!("[render]\nmax_depth = {MAX_DEPTH}\n"),
         ),
-        Path::new(&format!("{name}.toml")),
-        Path::new("."),
+        &dir.path(&format!("{name}.toml")),
+        dir.0.path(),
     )
     .unwrap();
     assert_eq!(scene.render.integrator, IntegratorKind::Path);
@@ -183,9 +229,14 @@ fn path_tracer_matches_mitsuba() {
         return;
     };
     let dir = common::Dir::new();
+    write_sky(&dir);
+    let scenes = SCENES
+        .iter()
+        .map(|&(name, additions)| (name, format!("{ROOM}{additions}")))
+        .chain([("environment", ENVIRONMENT.to_string())]);
     let mut report = Vec::new();
-    for (name, additions) in SCENES {
-        let ours = prism(name, additions, SAMPLES);
+    for (name, text) in scenes {
+        let ours = prism(&dir, name, &text, SAMPLES);
         let reference = mitsuba(&python, &dir, name, SAMPLES, MAX_DEPTH);
         let (means, blocks) = difference(&ours, &reference);
         report.push(format!("{name}: means {means:.4}, blocks {blocks:.4}"));

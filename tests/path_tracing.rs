@@ -141,6 +141,37 @@ fn lossless_materials_return_a_uniform_sky() {
     }
 }
 
+/// Under a sky image of one grey, drawn toward by its own samples as well as by scattered
+/// rays, a white matte ball and a mirror return the grey: the image's density is
+/// normalised, and the two ways of finding it are weighed to one.
+#[test]
+fn a_uniform_sky_image_is_returned_too() {
+    let dir = tempfile::tempdir().unwrap();
+    image::RgbImage::from_pixel(32, 16, image::Rgb([128, 128, 128]))
+        .save(dir.path().join("grey.png"))
+        .unwrap();
+    for material in [
+        "color = [1, 1, 1]\nspecular = 0",
+        "diffuse = 0\nspecular = 0\nreflectivity = 1",
+    ] {
+        let text = format!(
+            "[camera]\neye = [0, 0, 3]\nlook_at = [0, 0, 0]\nfov = 12\n\
+             [render]\nbackground = {{ image = \"grey.png\" }}\nambient = [0, 0, 0]\n\
+             max_depth = 64\n[materials.m]\n{material}\n\
+             [[spheres]]\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"m\"\n"
+        );
+        let scene = parse_scene(&text, &dir.path().join("sky.toml"), dir.path()).unwrap();
+        let mean = mean_of(&film(&scene, IntegratorKind::Path, 16, 16, 64));
+        let grey = 128.0 / 255.0;
+        for c in mean.to_array() {
+            assert!(
+                (c - grey).abs() < 0.01 * grey,
+                "{material}: {mean} against {grey}"
+            );
+        }
+    }
+}
+
 /// Inside a closed sphere that glows with radiance E and reflects a fraction a diffusely,
 /// every bounce adds a times the last: E·(1 + a + … + a^(max_depth+1)).
 #[test]

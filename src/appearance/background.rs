@@ -55,7 +55,7 @@ impl Background {
 
 /// The (u, v) of direction `dir` in a latitude-longitude image: u = ½ along −z and growing
 /// towards +x, v = 0 straight up and 1 straight down.
-fn lat_long(dir: Vec3A) -> (f32, f32) {
+pub(super) fn lat_long(dir: Vec3A) -> (f32, f32) {
     use std::f32::consts::{PI, TAU};
     let d = dir.normalize_or_zero();
     let u = 0.5 + d.x.atan2(-d.z) / TAU;

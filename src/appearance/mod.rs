@@ -2,6 +2,7 @@
 //! apart from geometry so that an edit changes a table in place and rebuilds nothing.
 
 mod background;
+mod environment;
 mod fog;
 mod light;
 mod material;
@@ -10,6 +11,7 @@ mod relief;
 mod texture;
 
 pub use background::Background;
+pub use environment::EnvironmentDistribution;
 pub use fog::{Fog, FogKind};
 pub use light::{AreaShape, Falloff, Light, LightKind, MAX_FALLOFF_GAIN, SpotCone};
 pub use material::{Material, fresnel_reflectance, reflect, refract, schlick_reflectance};
@@ -31,6 +33,9 @@ pub struct Appearance {
     /// Read at every hit and miss, so kept in the hot path's SIMD form.
     ambient: Vec3A,
     background: Background,
+    /// The background image's light, for drawing directions toward it: built on first use
+    /// (Whitted's renders never ask), anew after the background changes.
+    environment: std::sync::OnceLock<Option<std::sync::Arc<EnvironmentDistribution>>>,
     max_depth: u32,
     fog: Option<Fog>,
     /// Whether some light shows its surface to rays (`Light::emitter`).
@@ -138,6 +143,7 @@ impl Appearance {
             lights,
             ambient: ambient.into(),
             background,
+            environment: std::sync::OnceLock::new(),
             max_depth,
             fog: None,
         }
@@ -235,6 +241,20 @@ impl Appearance {
     /// Sets what a ray that leaves the scene sees.
     pub fn set_background(&mut self, background: Background) {
         self.background = background;
+        self.environment = std::sync::OnceLock::new();
+    }
+
+    /// How to draw directions toward the background in proportion to its light, when it is
+    /// an image.
+    pub fn environment(&self) -> Option<&EnvironmentDistribution> {
+        self.environment
+            .get_or_init(|| match &self.background {
+                Background::Image(image) => {
+                    Some(std::sync::Arc::new(EnvironmentDistribution::new(image)))
+                }
+                _ => None,
+            })
+            .as_deref()
     }
 
     /// Sets the most bounces along one path.

@@ -12,8 +12,8 @@
 use super::Integrator;
 use super::lobes::{LobeInputs, Lobes, Scatter};
 use super::path::MAX_STRAIGHT_CROSSINGS;
-use crate::accel::Reach;
-use crate::appearance::{reflect, refract};
+use crate::accel::{Reach, Toward};
+use crate::appearance::{EnvironmentDistribution, reflect, refract};
 use crate::geometry::{Ray, RayQuery};
 use glam::Vec3A;
 
@@ -28,7 +28,7 @@ fn power_heuristic(a: f32, b: f32) -> f32 {
     if a2 + b2 > 0.0 { a2 / (a2 + b2) } else { 0.0 }
 }
 
-impl Integrator<'_> {
+impl<'a> Integrator<'a> {
     /// The radiance arriving along `q` (of unit direction) from the scene, by one path;
     /// `reach` is what the ray can hit first.
     pub(super) fn path_radiance(&mut self, q: RayQuery, reach: Reach) -> Vec3A {
@@ -78,7 +78,14 @@ impl Integrator<'_> {
                 break;
             }
             let Some(hit) = hit else {
-                radiance += throughput * self.miss(q.ray.dir);
+                // A background image is also found by its own samples (`direct_light`).
+                let weight = match (scattered_from, self.environment_light()) {
+                    (Some((_, pdf)), Some(environment)) => {
+                        power_heuristic(pdf, environment.pdf(q.ray.dir))
+                    }
+                    _ => 1.0,
+                };
+                radiance += throughput * self.miss(q.ray.dir) * weight;
                 break;
             };
             let at = self.shading(&q, &hit, leaves);
@@ -218,7 +225,33 @@ impl Integrator<'_> {
             };
             sum += visible * sample.light * f * (cos * weight);
         }
+        if let Some(environment) = self.environment_light() {
+            let (wi, pdf) = environment.sample(self.stream.next_2d());
+            let cos = at.ns.dot(wi);
+            let (f, scatter_pdf) = lobes.eval(wi);
+            if pdf > 0.0 && start.faces(at, cos, wi) && f != Vec3A::ZERO {
+                let origin = self.shadow_origin(at, &start, wi);
+                self.counts.shadow += 1;
+                // A direction, not a light: the index names no light's buffer.
+                let toward = Toward::Direction(wi);
+                let visible =
+                    accel.light_reaching(usize::MAX, toward, origin, start.leaving, filters);
+                if visible != Vec3A::ZERO {
+                    let sky = self.appearance.background().along(wi);
+                    sum += visible * sky * f * (cos * power_heuristic(pdf, scatter_pdf) / pdf);
+                }
+            }
+        }
         sum
+    }
+
+    /// The background image as a light its own samples find: None for a colour or a
+    /// gradient (scattered rays find those well), and in fog, which hides everything
+    /// infinitely far.
+    fn environment_light(&self) -> Option<&'a EnvironmentDistribution> {
+        self.appearance
+            .environment()
+            .filter(|_| self.appearance.fog().is_none())
     }
 
     /// The media a ray that crosses the surface at `at` travels in beyond it: the object's

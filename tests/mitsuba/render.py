@@ -2,7 +2,7 @@
 integrator) to a linear EXR: the independent reference prism's path tracer is compared
 with.
 
-    python render.py SCENE SAMPLES MAX_DEPTH OUT.exr
+    python render.py SCENE SAMPLES MAX_DEPTH OUT.exr [SKY.exr]
 
 Each scene is the one tests/mitsuba.rs gives prism, written out again for Mitsuba: the same
 room (thin boxes, so that both renderers see the same solid walls), camera, materials and
@@ -60,23 +60,64 @@ def rectangle_light(radiance):
     return {"light_down": square(1.8, 90), "light_up": square(1.8001, -90)}
 
 
+def environment(sky):
+    """The environment scene: a grey floor, a matte ball, a rough metal ball and a glass
+    ball under the sky image `sky` (linear values: prism's 8-bit PNG divided by 255).
+    Mitsuba's u = 0 lies where prism's u = 1/2 does (along −z): turned 180° about y, the
+    two skies line up."""
+    return {
+        "type": "scene",
+        "integrator": {"type": "path"},
+        "camera": camera([0, 1.2, 4], [0, 0.5, 0]),
+        "sky": {
+            "type": "envmap",
+            "filename": sky,
+            "to_world": T().rotate([0, 1, 0], 180),
+        },
+        "floor": box([-3, -0.1, -3], [3, 0, 3], diffuse(0.5, 0.5, 0.5)),
+        "matte": {"type": "sphere", "center": [-1.1, 0.5, 0], "radius": 0.5, "bsdf": diffuse(0.8, 0.8, 0.8)},
+        "metal": {
+            "type": "sphere",
+            "center": [0, 0.5, -0.3],
+            "radius": 0.5,
+            "bsdf": {
+                "type": "roughconductor",
+                "material": "none",
+                "distribution": "ggx",
+                "alpha": 0.25,
+                "specular_reflectance": {"type": "rgb", "value": [0.9, 0.9, 0.9]},
+            },
+        },
+        "glass": {
+            "type": "sphere",
+            "center": [1.1, 0.5, 0],
+            "radius": 0.5,
+            "bsdf": {"type": "dielectric", "int_ior": 1.5, "ext_ior": 1.0},
+        },
+    }
+
+
+def camera(origin, target):
+    return {
+        "type": "perspective",
+        "fov": 40,
+        "fov_axis": "y",
+        "to_world": T().look_at(origin=origin, target=target, up=[0, 1, 0]),
+        "film": {
+            "type": "hdrfilm",
+            "width": WIDTH,
+            "height": HEIGHT,
+            "rfilter": {"type": "box"},
+            "pixel_format": "rgb",
+        },
+    }
+
+
 def scene(name):
     s = {
         "type": "scene",
         "integrator": {"type": "path"},
-        "camera": {
-            "type": "perspective",
-            "fov": 40,
-            "fov_axis": "y",
-            "to_world": T().look_at(origin=[0, 1, 3.4], target=[0, 1, 0], up=[0, 1, 0]),
-            "film": {
-                "type": "hdrfilm",
-                "width": WIDTH,
-                "height": HEIGHT,
-                "rfilter": {"type": "box"},
-                "pixel_format": "rgb",
-            },
-        },
+        "camera": camera([0, 1, 3.4], [0, 1, 0]),
     }
     s.update(room())
     if name == "sphere_light":
@@ -126,7 +167,7 @@ def scene(name):
 
 def main():
     name, samples, max_depth, out = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), sys.argv[4]
-    s = scene(name)
+    s = environment(sys.argv[5]) if name == "environment" else scene(name)
     s["integrator"]["max_depth"] = max_depth
     image = mi.render(mi.load_dict(s), spp=samples)
     mi.util.write_bitmap(out, image)
