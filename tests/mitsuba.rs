@@ -1,7 +1,8 @@
 //! prism's path tracer against Mitsuba 3's (`scalar_rgb`, its `path` integrator), numbers
 //! for numbers, on a Lambertian room lit by a glowing sphere, a glowing rectangle and an
-//! inverse-square point light, on smooth glass and a rough metal under the rectangle, and
-//! on matte, metal and glass balls lit only by a sky image with a small sun.
+//! inverse-square point light, and by a glowing ball and a glowing mesh (objects with
+//! `emission`), on smooth glass and a rough metal under the rectangle, and on matte, metal
+//! and glass balls lit only by a sky image with a small sun.
 //! tests/mitsuba/render.py writes each scene for Mitsuba with the lights in the physical
 //! units docs/effects.md gives for prism's.
 //!
@@ -55,7 +56,7 @@ macro_rules! rectangle {
 }
 
 /// The scenes by render.py's names: what each adds to the room.
-const SCENES: [(&str, &str); 4] = [
+const SCENES: [(&str, &str); 5] = [
     (
         "sphere_light",
         "[[lights]]\ntype = \"sphere\"\nposition = [0, 1.6, 0]\nradius = 0.15\n\
@@ -79,6 +80,14 @@ const SCENES: [(&str, &str); 4] = [
          [[spheres]]\ncenter = [-0.45, 1.1, -0.35]\nradius = 0.3\nmaterial = \"metal\"\n"
         ),
     ),
+    (
+        "glowing_objects",
+        "[materials.warm]\ncolor = [0, 0, 0]\nspecular = 0\nemission = [6, 5, 3.5]\n\
+         [materials.cool]\ncolor = [0, 0, 0]\nspecular = 0\nemission = [2, 4, 6]\n\
+         [[spheres]]\ncenter = [0.45, 1.5, -0.3]\nradius = 0.2\nmaterial = \"warm\"\n\
+         [[meshes]]\npath = \"cube.obj\"\nsmooth = false\nmaterial = \"cool\"\n\
+         translate = [-0.5, 1.6, 0.3]\nscale = 0.15\n",
+    ),
 ];
 
 /// Matte, rough metal and glass balls on a grey floor under the sky `write_sky` paints, as
@@ -97,7 +106,7 @@ const ENVIRONMENT: &str = "[camera]\neye = [0, 1.2, 4]\nlook_at = [0, 0.5, 0]\nf
     [[spheres]]\ncenter = [1.1, 0.5, 0]\nradius = 0.5\nmaterial = \"glass\"\n";
 
 /// A 256×128 latitude-longitude sky, as sky.png for prism and sky.exr (the same values
-/// over 255, linear) for Mitsuba: a blue sky paling to the horizon over brown ground, a
+/// over 255, linear) for Mitsuba, and cube.obj, a glowing mesh: a blue sky paling to the horizon over brown ground, a
 /// small sun four times brighter than the sky's brightest, high to the right, and a red
 /// patch low on the other side.
 fn write_sky(dir: &common::Dir) {
@@ -119,6 +128,12 @@ fn write_sky(dir: &common::Dir) {
         image::Rgb(c.map(|c| c as u8))
     });
     sky.save(dir.path("sky.png")).unwrap();
+    // A cube from −1 to 1, its faces wound outwards (Mitsuba's area lights glow on the side
+    // a face's winding faces; prism's on both, the inside hidden).
+    let cube = "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n\
+                f 1 4 3\nf 1 3 2\nf 5 6 7\nf 5 7 8\nf 1 5 8\nf 1 8 4\n\
+                f 2 3 7\nf 2 7 6\nf 1 2 6\nf 1 6 5\nf 4 8 7\nf 4 7 3\n";
+    std::fs::write(dir.path("cube.obj"), cube).unwrap();
     let linear = image::Rgb32FImage::from_fn(w, h, |x, y| {
         image::Rgb(sky.get_pixel(x, y).0.map(|c| c as f32 / 255.0))
     });

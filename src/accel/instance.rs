@@ -201,6 +201,11 @@ impl Instance {
         &self.model
     }
 
+    /// How it is placed: from the model's space to the scene's.
+    pub fn transform(&self) -> &Transform {
+        &self.transform
+    }
+
     /// The box around it in the scene's space.
     pub fn bounds(&self) -> Aabb {
         self.bounds

@@ -4,6 +4,7 @@
 //! point, and reads materials and lights from the appearance.
 
 mod coincident;
+mod emitters;
 mod first_surface;
 mod guide;
 pub mod kind;
@@ -17,6 +18,7 @@ mod relief;
 mod signature;
 mod transmission;
 
+pub use emitters::Emitters;
 pub use guide::Guide;
 pub use kind::IntegratorKind;
 pub use signature::Signature;
@@ -113,6 +115,9 @@ pub struct Integrator<'a> {
     /// The centre of the scene's bounds: the path tracer reads a light without falloff as
     /// one as bright there (light_sample.rs).
     scene_center: Option<Vec3A>,
+    /// The glowing objects the path tracer samples as lights (none: scattered rays alone
+    /// find them).
+    emitters: Option<&'a Emitters>,
 }
 
 /// What shading knows at a hit.
@@ -173,7 +178,15 @@ impl<'a> Integrator<'a> {
                 .bounds()
                 .map(|b| Vec3A::from((b.min + b.max) * 0.5))
                 .filter(|c| c.is_finite()),
+            emitters: None,
         }
+    }
+
+    /// Samples the glowing objects of `emitters` as lights (the path tracer's; built from
+    /// the same prepared scene).
+    pub fn with_emitters(mut self, emitters: Option<&'a Emitters>) -> Self {
+        self.emitters = emitters.filter(|e| !e.is_empty());
+        self
     }
 
     /// Chooses the light transport.

@@ -89,7 +89,25 @@ impl<'a> Integrator<'a> {
                 break;
             };
             let at = self.shading(&q, &hit, leaves);
-            radiance += throughput * Vec3A::from(at.material.emission);
+            let emission = Vec3A::from(at.material.emission);
+            if emission != Vec3A::ZERO {
+                // A glowing object is also found by its own samples (`direct_light`), when
+                // its shape can be sampled.
+                let weight = match (scattered_from, self.emitters) {
+                    (Some((p, pdf)), Some(emitters)) => {
+                        let pdf_area = emitters.pdf_area(hit.primitive);
+                        let d2 = (at.surface.point - p).length_squared();
+                        let cos = q.ray.dir.dot(at.surface.normal).abs();
+                        if pdf_area > 0.0 {
+                            power_heuristic(pdf, pdf_area * d2 / cos)
+                        } else {
+                            1.0
+                        }
+                    }
+                    _ => 1.0,
+                };
+                radiance += throughput * emission * weight;
+            }
             if depth > max_depth {
                 break;
             }
@@ -224,6 +242,30 @@ impl<'a> Integrator<'a> {
                 1.0
             };
             sum += visible * sample.light * f * (cos * weight);
+        }
+        if let Some(emitters) = self.emitters {
+            let choose = self.stream.next_2d().0;
+            let on = self.stream.next_2d();
+            if let Some(e) = emitters.sample(choose, on) {
+                let to = e.point - p;
+                let (wi, d2) = (to.normalize_or_zero(), to.length_squared());
+                let pdf = e.pdf_area * d2 / wi.dot(e.normal).abs();
+                let cos = at.ns.dot(wi);
+                let (f, scatter_pdf) = lobes.eval(wi);
+                if pdf.is_finite() && pdf > 0.0 && start.faces(at, cos, wi) && f != Vec3A::ZERO {
+                    let origin = self.shadow_origin(at, &start, wi);
+                    self.counts.shadow += 1;
+                    // The ray stops just short of the glowing surface, which would block it.
+                    let end = origin + (e.point - origin) * (1.0 - 1e-4);
+                    let toward = Toward::Point(end);
+                    let visible =
+                        accel.light_reaching(usize::MAX, toward, origin, start.leaving, filters);
+                    if visible != Vec3A::ZERO {
+                        let weight = power_heuristic(pdf, scatter_pdf);
+                        sum += visible * e.radiance * f * (cos * weight / pdf);
+                    }
+                }
+            }
         }
         if let Some(environment) = self.environment_light() {
             let (wi, pdf) = environment.sample(self.stream.next_2d());

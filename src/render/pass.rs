@@ -5,7 +5,7 @@ use super::region::PixelRect;
 use super::settings::RenderSettings;
 use crate::accel::{CameraView, Reach};
 use crate::camera::CameraRays;
-use crate::integrator::{Integrator, RayCounts};
+use crate::integrator::{Emitters, Integrator, RayCounts};
 use crate::sampler::{SampleStream, Sampler};
 use crate::scene::PreparedScene;
 use rayon::prelude::*;
@@ -42,6 +42,7 @@ pub fn render_pass(
     settings: &RenderSettings,
     acc: &mut Accumulator,
     active: Option<&[bool]>,
+    emitters: Option<&Emitters>,
     cancelled: &(dyn Fn() -> bool + Sync),
 ) -> Option<PassStats> {
     let start = std::time::Instant::now();
@@ -58,7 +59,8 @@ pub fn render_pass(
             }
             let mut integrator = Integrator::new(scene, settings.min_weight)
                 .with_self_intersection(settings.self_intersection)
-                .with_kind(settings.integrator);
+                .with_kind(settings.integrator)
+                .with_emitters(emitters);
             let mut traced = 0u64;
             for (row, row_pixels) in pixels.chunks_mut(width).enumerate() {
                 let local_y = band_index * BAND_ROWS + row;

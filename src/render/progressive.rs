@@ -8,7 +8,7 @@ use super::settings::RenderSettings;
 use crate::accel::CameraView;
 use crate::appearance::Appearance;
 use crate::camera::{Camera, CameraRays};
-use crate::integrator::RayCounts;
+use crate::integrator::{Emitters, IntegratorKind, RayCounts};
 use crate::sampler::Sampler;
 use crate::scene::PreparedScene;
 use rayon::prelude::*;
@@ -38,6 +38,9 @@ pub struct ProgressiveRender {
     /// What primary rays can hit first, by pixel: built at the first pass after the camera
     /// or the geometry changes.
     view: Option<CameraView>,
+    /// The glowing objects a path tracer samples as lights: built at the first path-traced
+    /// pass after the scene changes.
+    emitters: Option<Emitters>,
     accumulator: Accumulator,
     /// Pixels still refining (all of them unless adaptive sampling has stopped some).
     active: Vec<bool>,
@@ -76,6 +79,7 @@ impl ProgressiveRender {
             rays: camera.rays(settings.width, settings.height),
             window,
             view: None,
+            emitters: None,
             accumulator: Accumulator::new(window.width(), window.height()),
             active: vec![true; pixels],
             settled_before: vec![false; pixels],
@@ -110,6 +114,7 @@ impl ProgressiveRender {
             self.view = None;
         }
         self.scene = scene;
+        self.emitters = None;
         self.restart();
     }
 
@@ -117,6 +122,7 @@ impl ProgressiveRender {
     /// geometry is rebuilt, and the accumulation restarts.
     pub fn edit_appearance(&mut self, edit: impl FnOnce(&mut Appearance)) {
         edit(&mut Arc::make_mut(&mut self.scene).appearance);
+        self.emitters = None;
         self.restart();
     }
 
@@ -149,6 +155,12 @@ impl ProgressiveRender {
         let view = self
             .view
             .get_or_insert_with(|| scene.geometry.accel().camera_view(rays, w, h));
+        let emitters = match self.settings.integrator {
+            IntegratorKind::Path => {
+                Some(&*self.emitters.get_or_insert_with(|| Emitters::new(scene)))
+            }
+            IntegratorKind::Whitted => None,
+        };
         let build_seconds = build_start.elapsed().as_secs_f64();
         let active = self.settings.adaptive.map(|_| self.active.as_slice());
         let Some(mut stats) = render_pass(
@@ -161,6 +173,7 @@ impl ProgressiveRender {
             &self.settings,
             &mut self.accumulator,
             active,
+            emitters,
             cancelled,
         ) else {
             self.dirty = true;

@@ -32,6 +32,9 @@ pub struct ObjectGeometry {
     /// A convex solid or a flat convex polygon: a ray leaving its outside cannot meet it
     /// again (not a mesh, whose bumps may shadow each other).
     pub convex: bool,
+    /// An infinite plane (traced as a disc far wider than the scene): no light can sample
+    /// its area.
+    pub unbounded: bool,
 }
 
 impl ObjectGeometry {
@@ -361,6 +364,7 @@ impl Geometry {
                 planar_uv,
                 flat: object.shape.is_flat(),
                 convex: object.shape.is_convex(),
+                unbounded: matches!(object.shape, ShapeDesc::Plane { .. }),
             });
         }
         let lights: Vec<Option<Vec3>> = scene.lights.iter().map(|l| l.position()).collect();

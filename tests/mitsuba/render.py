@@ -2,7 +2,9 @@
 integrator) to a linear EXR: the independent reference prism's path tracer is compared
 with.
 
-    python render.py SCENE SAMPLES MAX_DEPTH OUT.exr [SKY.exr]
+    python render.py SCENE SAMPLES MAX_DEPTH OUT.exr SKY.exr
+
+(the sky image, and cube.obj beside it, are the files tests/mitsuba.rs writes.)
 
 Each scene is the one tests/mitsuba.rs gives prism, written out again for Mitsuba: the same
 room (thin boxes, so that both renderers see the same solid walls), camera, materials and
@@ -160,13 +162,37 @@ def scene(name):
                 "specular_reflectance": {"type": "rgb", "value": [0.9, 0.9, 0.9]},
             },
         }
+    elif name == "glowing_objects":
+        # prism: a ball and a mesh (cube.obj, which the test writes beside the sky) whose
+        # material has `emission`, black otherwise: their surfaces glow, found both by
+        # scattered rays and by their own samples.
+        s["ball"] = {
+            "type": "sphere",
+            "center": [0.45, 1.5, -0.3],
+            "radius": 0.2,
+            "bsdf": BLACK,
+            "emitter": {"type": "area", "radiance": {"type": "rgb", "value": [6, 5, 3.5]}},
+        }
+        s["cube"] = {
+            "type": "obj",
+            "filename": CUBE,
+            "face_normals": True,
+            "to_world": T().translate([-0.5, 1.6, 0.3]).scale(0.15),
+            "bsdf": BLACK,
+            "emitter": {"type": "area", "radiance": {"type": "rgb", "value": [2, 4, 6]}},
+        }
     else:
         raise SystemExit(f"no scene {name!r}")
     return s
 
 
+CUBE = None
+
+
 def main():
+    global CUBE
     name, samples, max_depth, out = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), sys.argv[4]
+    CUBE = sys.argv[5].replace("sky.exr", "cube.obj")
     s = environment(sys.argv[5]) if name == "environment" else scene(name)
     s["integrator"]["max_depth"] = max_depth
     image = mi.render(mi.load_dict(s), spp=samples)
