@@ -36,22 +36,11 @@ const MAX_DEPTH: u32 = 2;
 
 /// The room of every scene, as render.py's `room()`: x and z in −1..1, y in 0..2, open at
 /// the front.
-const ROOM: &str = "[camera]\neye = [0, 1, 3.4]\nlook_at = [0, 1, 0]\nfov = 40\n\
-    [render]\nambient = [0, 0, 0]\nintegrator = \"path\"\n\
-    [materials.white]\ncolor = [0.7, 0.7, 0.7]\nspecular = 0\n\
-    [materials.red]\ncolor = [0.6, 0.1, 0.1]\nspecular = 0\n\
-    [materials.green]\ncolor = [0.1, 0.5, 0.1]\nspecular = 0\n\
-    [[boxes]]\nmin = [-1.1, -0.1, -1.1]\nmax = [1.1, 0, 1.1]\nmaterial = \"white\"\n\
-    [[boxes]]\nmin = [-1.1, 2, -1.1]\nmax = [1.1, 2.1, 1.1]\nmaterial = \"white\"\n\
-    [[boxes]]\nmin = [-1.1, -0.1, -1.1]\nmax = [1.1, 2.1, -1]\nmaterial = \"white\"\n\
-    [[boxes]]\nmin = [-1.1, -0.1, -1.1]\nmax = [-1, 2.1, 1.1]\nmaterial = \"red\"\n\
-    [[boxes]]\nmin = [1, -0.1, -1.1]\nmax = [1.1, 2.1, 1.1]\nmaterial = \"green\"\n\
-    [[boxes]]\nmin = [-0.7, 0, -0.6]\nmax = [-0.2, 0.8, -0.1]\nmaterial = \"white\"\n";
+const ROOM: &str = include_str!("mitsuba/room.toml");
 
 macro_rules! rectangle {
     () => {
-        "[[lights]]\ntype = \"area\"\ncorner = [-0.25, 1.8, -0.25]\nedge_u = [0.5, 0, 0]\n\
-         edge_v = [0, 0, 0.5]\nfalloff = \"inverse_square\"\nintensity = 1\n"
+        include_str!("mitsuba/rectangle_light.toml")
     };
 }
 

@@ -7,6 +7,7 @@ use glam::Vec3;
 use plotters::prelude::*;
 use prism::accel::AccelOptions;
 use prism::camera::Camera;
+use prism::integrator::IntegratorKind;
 use prism::integrator::RayCounts;
 use prism::render::{
     Accumulator, AdaptiveSettings, PassOutcome, ProgressiveRender, RenderSettings,
@@ -39,6 +40,8 @@ pub(super) struct Size {
     pub reference_aa: u32,
     /// Subsamples per pixel of the reference when not reference_aa² (`RenderSettings::samples`).
     pub reference_samples: Option<u32>,
+    /// The light transport of the reference (and of the strategies compared with it).
+    pub integrator: IntegratorKind,
 }
 
 /// A way of sampling the seed scene, compared by the bench.
@@ -214,6 +217,7 @@ pub fn run(cfg: Config) -> Result<()> {
             height: 120,
             reference_aa: 16,
             reference_samples: None,
+            integrator: IntegratorKind::Whitted,
         }
     } else {
         Size {
@@ -221,6 +225,7 @@ pub fn run(cfg: Config) -> Result<()> {
             height: 600,
             reference_aa: 16,
             reference_samples: None,
+            integrator: IntegratorKind::Whitted,
         }
     };
     std::fs::create_dir_all(&cfg.out_dir)
@@ -313,6 +318,7 @@ pub(super) fn reference(
         size.height,
         size.reference_aa,
         size.reference_samples,
+        size.integrator,
         env!("CARGO_PKG_VERSION"),
     )
         .hash(&mut hasher);
@@ -337,6 +343,7 @@ pub(super) fn reference(
     let mut settings = RenderSettings::new(size.width, size.height, size.reference_aa);
     settings.samples = size.reference_samples;
     settings.min_weight = 0.0;
+    settings.integrator = size.integrator;
     let mut job = ProgressiveRender::new(scene.clone(), camera, settings);
     while let PassOutcome::Finished(_) = job.step(&NEVER) {}
     let means: Vec<Vec3> = job.accumulator().pixels.iter().map(|p| p.mean()).collect();
@@ -355,7 +362,7 @@ pub(super) fn reference(
     Ok(means)
 }
 
-fn to_rgb8(means: &[Vec3], width: u32, height: u32) -> Vec<u8> {
+pub(super) fn to_rgb8(means: &[Vec3], width: u32, height: u32) -> Vec<u8> {
     let mut v = Vec::with_capacity(means.len() * 3);
     for m in means {
         v.extend_from_slice(&prism::render::to_8bit(*m));
@@ -366,14 +373,26 @@ fn to_rgb8(means: &[Vec3], width: u32, height: u32) -> Vec<u8> {
 
 /// RMSE of the pixel means (clamped to the display range) and mean FLIP of the 8-bit images.
 fn errors(acc: &Accumulator, reference: &[Vec3], reference_rgb8: &[u8]) -> (f64, f64) {
+    let means: Vec<Vec3> = acc.pixels.iter().map(|p| p.mean()).collect();
+    errors_of_means(&means, acc.width, acc.height, reference, reference_rgb8)
+}
+
+/// `errors` of an image given as its pixels' colours, row by row.
+pub(super) fn errors_of_means(
+    means: &[Vec3],
+    width: u32,
+    height: u32,
+    reference: &[Vec3],
+    reference_rgb8: &[u8],
+) -> (f64, f64) {
     let mut sum = 0.0f64;
-    for (p, r) in acc.pixels.iter().zip(reference) {
-        let d = p.mean().clamp(Vec3::ZERO, Vec3::ONE) - r.clamp(Vec3::ZERO, Vec3::ONE);
+    for (p, r) in means.iter().zip(reference) {
+        let d = p.clamp(Vec3::ZERO, Vec3::ONE) - r.clamp(Vec3::ZERO, Vec3::ONE);
         sum += d.length_squared() as f64;
     }
     let rmse = (sum / (reference.len() * 3) as f64).sqrt();
-    let test = nv_flip::FlipImageRgb8::with_data(acc.width, acc.height, acc.to_rgb8().as_raw());
-    let refi = nv_flip::FlipImageRgb8::with_data(acc.width, acc.height, reference_rgb8);
+    let test = nv_flip::FlipImageRgb8::with_data(width, height, &to_rgb8(means, width, height));
+    let refi = nv_flip::FlipImageRgb8::with_data(width, height, reference_rgb8);
     let map = nv_flip::flip(refi, test, nv_flip::DEFAULT_PIXELS_PER_DEGREE);
     let flip = nv_flip::FlipPool::from_image(&map).mean() as f64;
     (rmse, flip)

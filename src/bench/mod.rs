@@ -4,6 +4,7 @@ mod convergence;
 mod edit;
 mod modelling;
 mod numerics;
+mod path_tracing;
 mod scale;
 mod scenes;
 mod soft_shadows;
@@ -103,6 +104,20 @@ pub enum BenchKind {
         #[arg(long, default_value_t = 7)]
         runs: usize,
     },
+    /// The path tracer's error against time on the room tests/mitsuba.rs renders, and
+    /// Mitsuba 3's at the same samples where it is installed (docs/benchmarks/path_tracing.md).
+    PathTracing {
+        /// A 64×48 image against a 256-sample reference: proves the bench works.
+        #[arg(long)]
+        quick: bool,
+        /// Where the CSV and the table go (default: prism-bench/path-tracing in the
+        /// working directory; the docs' come from `--out docs/benchmarks`).
+        #[arg(long)]
+        out: Option<std::path::PathBuf>,
+        /// Timed runs per figure (the median is reported).
+        #[arg(long, default_value_t = 3)]
+        runs: usize,
+    },
     /// Error against time for the sampling strategies on a scene of soft shadows
     /// (docs/benchmarks/soft_shadows.md).
     SoftShadows {
@@ -143,6 +158,12 @@ fn run_in_pool(args: BenchArgs) -> Result<()> {
             runs: if quick { runs.clamp(1, 2) } else { runs.max(1) },
             out_dir: out
                 .unwrap_or_else(|| std::path::Path::new("prism-bench").join("soft-shadows")),
+        }),
+        BenchKind::PathTracing { quick, out, runs } => path_tracing::run(path_tracing::Config {
+            quick,
+            runs: runs.max(1),
+            out_dir: out
+                .unwrap_or_else(|| std::path::Path::new("prism-bench").join("path-tracing")),
         }),
         BenchKind::Scale { quick, out, runs } => scale::run(scale::Config {
             quick,

@@ -5,6 +5,7 @@
 use super::convergence::{Measure, Size, Timed, first_below, measure, plot, reference, write_csv};
 use anyhow::{Context, Result};
 use plotters::style::RGBColor;
+use prism::integrator::IntegratorKind;
 use prism::render::{AdaptiveSettings, RenderSettings};
 use prism::scene::PreparedScene;
 use prism::scene_file::parse_scene;
@@ -35,6 +36,7 @@ pub fn run(cfg: Config) -> Result<()> {
             height: 100,
             reference_aa: 4,
             reference_samples: Some(1024),
+            integrator: IntegratorKind::Whitted,
         }
     } else {
         Size {
@@ -42,6 +44,7 @@ pub fn run(cfg: Config) -> Result<()> {
             height: 200,
             reference_aa: 4,
             reference_samples: Some(4096),
+            integrator: IntegratorKind::Whitted,
         }
     };
     std::fs::create_dir_all(&cfg.out_dir)

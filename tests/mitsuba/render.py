@@ -2,9 +2,11 @@
 integrator) to a linear EXR: the independent reference prism's path tracer is compared
 with.
 
-    python render.py SCENE SAMPLES MAX_DEPTH OUT.exr SKY.exr
+    python render.py SCENE SAMPLES MAX_DEPTH OUT.exr SKY.exr [WIDTH HEIGHT]
 
-(the sky image, and cube.obj beside it, are the files tests/mitsuba.rs writes.)
+(the sky image, and cube.obj beside it, are the files tests/mitsuba.rs writes; the image is
+64×48 unless WIDTH and HEIGHT say otherwise). It prints the seconds `mi.render` took, which
+`prism bench path-tracing` reads.
 
 Each scene is the one tests/mitsuba.rs gives prism, written out again for Mitsuba: the same
 room (thin boxes, so that both renderers see the same solid walls), camera, materials and
@@ -14,6 +16,7 @@ light, the light in the physical units docs/effects.md gives for prism's lights.
 
 import math
 import sys
+import time
 
 import mitsuba as mi
 
@@ -193,9 +196,15 @@ def main():
     global CUBE
     name, samples, max_depth, out = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), sys.argv[4]
     CUBE = sys.argv[5].replace("sky.exr", "cube.obj")
+    global WIDTH, HEIGHT
+    if len(sys.argv) > 7:
+        WIDTH, HEIGHT = int(sys.argv[6]), int(sys.argv[7])
     s = environment(sys.argv[5]) if name == "environment" else scene(name)
     s["integrator"]["max_depth"] = max_depth
-    image = mi.render(mi.load_dict(s), spp=samples)
+    loaded = mi.load_dict(s)
+    start = time.perf_counter()
+    image = mi.render(loaded, spp=samples)
+    print(f"{time.perf_counter() - start:.6f}")
     mi.util.write_bitmap(out, image)
 
 

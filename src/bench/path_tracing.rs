@@ -1,0 +1,206 @@
+//! `prism bench path-tracing`: the path tracer's error against time on the room that
+//! tests/mitsuba.rs compares with Mitsuba 3 (lit by a glowing rectangle), and Mitsuba's own
+//! time and error at the same samples per pixel where Mitsuba is installed.
+
+use super::convergence::{
+    Measure, Size, Timed, errors_of_means, measure, reference, to_rgb8, write_csv,
+};
+use anyhow::{Context, Result, bail};
+use glam::Vec3;
+use prism::integrator::IntegratorKind;
+use prism::render::RenderSettings;
+use prism::scene::PreparedScene;
+use prism::scene_file::parse_scene;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::sync::Arc;
+
+pub struct Config {
+    pub quick: bool,
+    pub out_dir: PathBuf,
+    pub runs: usize,
+}
+
+const ROOM: &str = include_str!("../../tests/mitsuba/room.toml");
+const LIGHT: &str = include_str!("../../tests/mitsuba/rectangle_light.toml");
+/// Mitsuba's description of the same scene.
+const SCRIPT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/mitsuba/render.py");
+/// The scene's `max_depth` (its default), which Mitsuba counts as 2 more.
+const MAX_DEPTH: u32 = 5;
+
+const PRISM: &str = "prism, path tracer";
+const MITSUBA: &str = "Mitsuba 3, scalar_rgb path";
+
+pub fn run(cfg: Config) -> Result<()> {
+    let size = if cfg.quick {
+        Size {
+            width: 64,
+            height: 48,
+            reference_aa: 4,
+            reference_samples: Some(256),
+            integrator: IntegratorKind::Path,
+        }
+    } else {
+        Size {
+            width: 320,
+            height: 240,
+            reference_aa: 4,
+            reference_samples: Some(4096),
+            integrator: IntegratorKind::Path,
+        }
+    };
+    let counts: &[u32] = if cfg.quick {
+        &[4, 16]
+    } else {
+        &[4, 16, 64, 256]
+    };
+    std::fs::create_dir_all(&cfg.out_dir)
+        .with_context(|| format!("cannot create {}", cfg.out_dir.display()))?;
+    let text = format!("{ROOM}{LIGHT}");
+    let scene = parse_scene(&text, Path::new("room.toml"), Path::new("."))?;
+    assert_eq!(scene.render.max_depth, MAX_DEPTH);
+    let prepared = Arc::new(PreparedScene::new(&scene));
+    let reference = reference(&text, &prepared, scene.camera, &size)?;
+    let reference_rgb8 = to_rgb8(&reference, size.width, size.height);
+    let strategies: Vec<Timed> = counts
+        .iter()
+        .map(|&n| {
+            let mut s =
+                RenderSettings::for_scene(&scene.render, Some(size.width), Some(size.height), None)
+                    .expect("the bench's settings are valid");
+            s.samples = Some(n);
+            Timed {
+                name: PRISM,
+                measure: Measure::Finished,
+                settings: s,
+            }
+        })
+        .collect();
+    let (mut points, _, _) = measure(&prepared, scene.camera, &strategies, &reference, cfg.runs);
+
+    let python = mitsuba_python();
+    if let Some(python) = &python {
+        let dir = cfg.out_dir.join("mitsuba");
+        std::fs::create_dir_all(&dir)?;
+        for &n in counts {
+            let mut times = Vec::new();
+            let mut image = Vec::new();
+            for _ in 0..cfg.runs {
+                let (seconds, means) = mitsuba(python, &dir, n, &size)?;
+                times.push(seconds);
+                image = means;
+            }
+            times.sort_by(f64::total_cmp);
+            let (rmse, flip) =
+                errors_of_means(&image, size.width, size.height, &reference, &reference_rgb8);
+            points.push(super::convergence::Point {
+                name: MITSUBA,
+                passes: n,
+                samples_per_pixel: n as f64,
+                seconds: times[times.len() / 2],
+                rmse,
+                flip,
+            });
+        }
+    }
+    write_csv(&cfg.out_dir.join("path_tracing.csv"), &points)?;
+
+    let mut md = String::new();
+    let mode = if cfg.quick { " (quick mode)" } else { "" };
+    writeln!(md, "# Path tracing: prism against Mitsuba 3{mode}\n")?;
+    writeln!(
+        md,
+        "The room tests/mitsuba.rs compares with Mitsuba (tests/mitsuba/room.toml lit by \
+         tests/mitsuba/rectangle_light.toml; Mitsuba's copy in tests/mitsuba/render.py), \
+         {}×{}, `max_depth` {MAX_DEPTH} (Mitsuba's {}), both on every core, against prism's \
+         own {}-sample image. Made by `cargo run --release -- bench path-tracing{}`; medians \
+         of {} runs on a shared 2-core machine. Mitsuba's time is its `mi.render` call alone \
+         (the scene loaded before); prism's is its passes. At equal samples Mitsuba's image \
+         is the noisier: it samples one light per bounce (here one of the two back-to-back \
+         rectangles that stand for prism's two-sided one) with independent random numbers, \
+         where prism samples every light with stratified ones.\n",
+        size.width,
+        size.height,
+        MAX_DEPTH + 2,
+        size.reference_samples.unwrap_or(16),
+        if cfg.quick {
+            " --quick"
+        } else {
+            " --out docs/benchmarks"
+        },
+        cfg.runs
+    )?;
+    writeln!(
+        md,
+        "| renderer | samples per pixel | time | mean FLIP | RMSE |\n|---|---|---|---|---|"
+    )?;
+    for p in &points {
+        writeln!(
+            md,
+            "| {} | {} | {:.3} s | {:.5} | {:.5} |",
+            p.name, p.passes, p.seconds, p.flip, p.rmse
+        )?;
+    }
+    match &python {
+        Some(_) => {
+            writeln!(
+                md,
+                "\n| samples per pixel | Mitsuba's time over prism's |\n|---|---|"
+            )?;
+            for &n in counts {
+                let at = |name| points.iter().find(|p| p.name == name && p.passes == n);
+                if let (Some(ours), Some(theirs)) = (at(PRISM), at(MITSUBA)) {
+                    writeln!(md, "| {n} | {:.2}× |", theirs.seconds / ours.seconds)?;
+                }
+            }
+        }
+        None => writeln!(
+            md,
+            "\nMitsuba 3 is not installed here (no Python that imports `mitsuba`; set \
+             PRISM_MITSUBA_PYTHON): its rows are missing."
+        )?,
+    }
+    super::write_report(&cfg.out_dir, "path_tracing.md", &md)
+}
+
+/// The Python that runs Mitsuba: PRISM_MITSUBA_PYTHON, else `python3`, if it imports it.
+fn mitsuba_python() -> Option<String> {
+    let python = std::env::var("PRISM_MITSUBA_PYTHON").unwrap_or_else(|_| "python3".into());
+    Command::new(&python)
+        .args(["-c", "import mitsuba"])
+        .output()
+        .is_ok_and(|o| o.status.success())
+        .then_some(python)
+}
+
+/// Mitsuba's render of the room at `samples` per pixel: the seconds it took and its pixels.
+fn mitsuba(python: &str, dir: &Path, samples: u32, size: &Size) -> Result<(f64, Vec<Vec3>)> {
+    let out = dir.join("mitsuba.exr");
+    let run = Command::new(python)
+        .arg(SCRIPT)
+        .args([
+            "rectangle_light",
+            &samples.to_string(),
+            &(MAX_DEPTH + 2).to_string(),
+        ])
+        .arg(&out)
+        .arg(dir.join("sky.exr"))
+        .args([size.width.to_string(), size.height.to_string()])
+        .output()
+        .context("cannot run Mitsuba's script")?;
+    if !run.status.success() {
+        bail!(
+            "Mitsuba failed: {}",
+            String::from_utf8_lossy(&run.stderr).trim()
+        );
+    }
+    let seconds: f64 = String::from_utf8_lossy(&run.stdout)
+        .trim()
+        .parse()
+        .context("Mitsuba's script did not print its time")?;
+    let image = image::open(&out)
+        .context("cannot read Mitsuba's image")?
+        .into_rgb32f();
+    Ok((seconds, image.pixels().map(|p| Vec3::from(p.0)).collect()))
+}
