@@ -529,11 +529,7 @@ fn headline(
         md,
         "Seed scene, {w}×{h}, reference {n}×{n} subsamples. Made by `cargo run --release -- bench convergence{}`; \
          medians of {runs} runs on a shared 2-core machine.\n",
-        if cfg.quick {
-            " --quick"
-        } else {
-            " --out docs/benchmarks"
-        },
+        super::flags_of_report(cfg.quick),
         n = size.reference_aa
     )?;
     speed_section(&mut md, cfg, scene, prepared, rays, ray_seconds, size)?;

@@ -95,11 +95,7 @@ pub fn run(cfg: Config) -> Result<()> {
          | change it in a running render (and restart the accumulation) | {:.3} ms |",
         if cfg.quick { " (quick mode)" } else { "" },
         cfg.runs,
-        if cfg.quick {
-            " --quick"
-        } else {
-            " --out docs/benchmarks"
-        },
+        super::flags_of_report(cfg.quick),
         rebuild * 1e3,
         table * 1e6,
         restart * 1e3,

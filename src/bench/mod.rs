@@ -134,6 +134,15 @@ pub enum BenchKind {
     },
 }
 
+/// The flags a report's command names: the quick mode's, or the docs' folder.
+fn flags_of_report(quick: bool) -> &'static str {
+    if quick {
+        " --quick"
+    } else {
+        " --out docs/benchmarks"
+    }
+}
+
 /// Writes the table `md` to `name` in folder `dir` (made if missing) and prints it.
 fn write_report(dir: &std::path::Path, name: &str, md: &str) -> Result<()> {
     use anyhow::Context;

@@ -124,11 +124,7 @@ pub fn run(cfg: Config) -> Result<()> {
         size.height,
         MAX_DEPTH + 2,
         size.reference_samples.unwrap_or(16),
-        if cfg.quick {
-            " --quick"
-        } else {
-            " --out docs/benchmarks"
-        },
+        super::flags_of_report(cfg.quick),
         cfg.runs
     )?;
     writeln!(

@@ -115,11 +115,7 @@ pub fn run(cfg: Config) -> Result<()> {
         size.width,
         size.height,
         size.reference_samples.unwrap_or(16),
-        if cfg.quick {
-            " --quick"
-        } else {
-            " --out docs/benchmarks"
-        },
+        super::flags_of_report(cfg.quick),
         cfg.runs
     )?;
     writeln!(

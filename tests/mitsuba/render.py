@@ -38,6 +38,15 @@ def diffuse(r, g, b):
 
 BLACK = diffuse(0, 0, 0)
 
+# prism's `reflectivity = 0.9` with `roughness = 0.5`: a GGX mirror of α = 0.25.
+ROUGH_METAL = {
+    "type": "roughconductor",
+    "material": "none",
+    "distribution": "ggx",
+    "alpha": 0.25,
+    "specular_reflectance": {"type": "rgb", "value": [0.9, 0.9, 0.9]},
+}
+
 
 def room():
     """The room of every scene: x and z in -1..1, y in 0..2, open at the front (+z)."""
@@ -85,13 +94,7 @@ def environment(sky):
             "type": "sphere",
             "center": [0, 0.5, -0.3],
             "radius": 0.5,
-            "bsdf": {
-                "type": "roughconductor",
-                "material": "none",
-                "distribution": "ggx",
-                "alpha": 0.25,
-                "specular_reflectance": {"type": "rgb", "value": [0.9, 0.9, 0.9]},
-            },
+            "bsdf": ROUGH_METAL,
         },
         "glass": {
             "type": "sphere",
@@ -157,13 +160,7 @@ def scene(name):
             "type": "sphere",
             "center": [-0.45, 1.1, -0.35],
             "radius": 0.3,
-            "bsdf": {
-                "type": "roughconductor",
-                "material": "none",
-                "distribution": "ggx",
-                "alpha": 0.25,
-                "specular_reflectance": {"type": "rgb", "value": [0.9, 0.9, 0.9]},
-            },
+            "bsdf": ROUGH_METAL,
         }
     elif name == "glowing_objects":
         # prism: a ball and a mesh (cube.obj, which the test writes beside the sky) whose
