@@ -4,9 +4,9 @@
 //!
 //! The fields keep their Whitted meaning, shared out so that no surface returns more light
 //! than arrives: reflectivity and transparency (split by the Fresnel equations for `fresnel`
-//! glass) take their shares first, then the highlight (`specular`, at most what is left), and
-//! the Lambertian albedo, colour × `diffuse` × (1 − `transparency`), is scaled down to what
-//! is left after those.
+//! glass) take their shares first; the highlight (`specular`) and the Lambertian albedo,
+//! colour × `diffuse` × (1 − `transparency`), share what is left, both scaled down alike when
+//! together they would return more (so a coloured mirror keeps its colour, dimmed).
 
 use crate::appearance::{reflect, schlick_reflectance};
 use crate::numerics::orthonormal_basis;
@@ -77,13 +77,14 @@ impl Lobes {
             mirror /= specular_sum;
             transmit /= specular_sum;
         }
-        let mut left = (1.0 - mirror - transmit).max(0.0);
-        let highlight = m.specular.min(left);
-        left -= highlight;
+        let left = (1.0 - mirror - transmit).max(0.0);
+        let mut highlight = m.specular.min(1.0);
         let mut diffuse = m.diffuse.clamp(Vec3A::ZERO, Vec3A::ONE);
-        let most = diffuse.max_element();
-        if most > left {
-            diffuse *= left / most;
+        let asked = highlight + diffuse.max_element();
+        if asked > left {
+            let scale = left / asked;
+            highlight *= scale;
+            diffuse *= scale;
         }
         let mirror_albedo = match m.conductor {
             Some(f0) => mirror * mean(f0),
@@ -337,8 +338,8 @@ mod tests {
 
     #[test]
     fn shares_never_return_more_than_arrives() {
-        // Colour 0.8 with a 0.5 highlight and a 0.3 mirror: the mirror takes 0.3, the
-        // highlight 0.5 and the diffuse what is left, 0.2.
+        // Colour 0.8 with a 0.5 highlight and a 0.3 mirror: the mirror takes 0.3, and the
+        // highlight and the diffuse share the 0.7 left in their proportions, 5 : 8.
         let m = LobeInputs {
             diffuse: Vec3A::splat(0.8),
             specular: 0.5,
@@ -347,8 +348,27 @@ mod tests {
         };
         let lobes = Lobes::new(m, Vec3A::Z, Vec3A::Z, Vec3A::Z);
         assert_eq!(lobes.mirror, 0.3);
-        assert_eq!(lobes.highlight, 0.5);
-        assert!((lobes.diffuse - Vec3A::splat(0.2)).abs().max_element() < 1e-6);
+        assert!((lobes.highlight - 0.7 * 0.5 / 1.3).abs() < 1e-6);
+        assert!(
+            (lobes.diffuse - Vec3A::splat(0.7 * 0.8 / 1.3))
+                .abs()
+                .max_element()
+                < 1e-6
+        );
+        // A material that asks for no more than arrives keeps every share.
+        let modest = Lobes::new(
+            LobeInputs {
+                diffuse: Vec3A::new(0.5, 0.2, 0.1),
+                specular: 0.2,
+                reflected: 0.3,
+                ..inputs()
+            },
+            Vec3A::Z,
+            Vec3A::Z,
+            Vec3A::Z,
+        );
+        assert_eq!(modest.highlight, 0.2);
+        assert_eq!(modest.diffuse, Vec3A::new(0.5, 0.2, 0.1));
         let over = LobeInputs {
             reflected: 0.9,
             transmitted: 0.6,
