@@ -36,11 +36,11 @@ const MAX_DEPTH: u32 = 2;
 
 /// The room of every scene, as render.py's `room()`: x and z in −1..1, y in 0..2, open at
 /// the front.
-const ROOM: &str = include_str!("mitsuba/room.toml");
+const ROOM: &str = include_str!("../assets/mitsuba/room.toml");
 
 macro_rules! rectangle {
     () => {
-        include_str!("mitsuba/rectangle_light.toml")
+        include_str!("../assets/mitsuba/rectangle_light.toml")
     };
 }
 

@@ -22,8 +22,8 @@ pub struct Config {
     pub runs: usize,
 }
 
-const ROOM: &str = include_str!("../../tests/mitsuba/room.toml");
-const LIGHT: &str = include_str!("../../tests/mitsuba/rectangle_light.toml");
+const ROOM: &str = include_str!("../../assets/mitsuba/room.toml");
+const LIGHT: &str = include_str!("../../assets/mitsuba/rectangle_light.toml");
 /// Mitsuba's description of the same scene.
 const SCRIPT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/mitsuba/render.py");
 /// The scene's `max_depth` (its default), which Mitsuba counts as 2 more.
@@ -111,8 +111,8 @@ pub fn run(cfg: Config) -> Result<()> {
     writeln!(md, "# Path tracing: prism against Mitsuba 3{mode}\n")?;
     writeln!(
         md,
-        "The room tests/mitsuba.rs compares with Mitsuba (tests/mitsuba/room.toml lit by \
-         tests/mitsuba/rectangle_light.toml; Mitsuba's copy in tests/mitsuba/render.py), \
+        "The room tests/mitsuba.rs compares with Mitsuba (assets/mitsuba/room.toml lit by \
+         assets/mitsuba/rectangle_light.toml; Mitsuba's copy in tests/mitsuba/render.py), \
          {}×{}, `max_depth` {MAX_DEPTH} (Mitsuba's {}), both on every core, against prism's \
          own {}-sample image. Made by `cargo run --release -- bench path-tracing{}`; medians \
          of {} runs on a shared 2-core machine. Mitsuba's time is its `mi.render` call alone \
@@ -153,15 +153,19 @@ pub fn run(cfg: Config) -> Result<()> {
         }
         None => writeln!(
             md,
-            "\nMitsuba 3 is not installed here (no Python that imports `mitsuba`; set \
-             PRISM_MITSUBA_PYTHON): its rows are missing."
+            "\nMitsuba 3 is not installed here (no Python that imports `mitsuba`, set \
+             PRISM_MITSUBA_PYTHON; or no {SCRIPT}): its rows are missing."
         )?,
     }
     super::write_report(&cfg.out_dir, "path_tracing.md", &md)
 }
 
-/// The Python that runs Mitsuba: PRISM_MITSUBA_PYTHON, else `python3`, if it imports it.
+/// The Python that runs Mitsuba: PRISM_MITSUBA_PYTHON, else `python3`, if it imports it
+/// and Mitsuba's copy of the scene is here (a source tree's tests/, not an installed prism).
 fn mitsuba_python() -> Option<String> {
+    if !Path::new(SCRIPT).is_file() {
+        return None;
+    }
     let python = std::env::var("PRISM_MITSUBA_PYTHON").unwrap_or_else(|_| "python3".into());
     Command::new(&python)
         .args(["-c", "import mitsuba"])
