@@ -377,6 +377,47 @@ fn glossy_reflection_spreads_the_mirror_into_a_lobe() {
     }
 }
 
+/// Rough glass that bends light spreads the refracted ray as a rough mirror spreads the
+/// reflected one: through a clear slab under a uniform sky it still passes all of it (a
+/// ray a facet turns back inside finds its way out later), and under a sky bright only near the zenith, looked through at a
+/// slant, the result moves away from the smooth slab's (which sends the ray on parallel),
+/// more the rougher it is.
+#[test]
+fn rough_glass_spreads_the_refracted_ray() {
+    let scene = |roughness: f32, sky: &str| {
+        load(&format!(
+            "[camera]\neye = [0, 2, 0]\ndirection = [0, 1, -1]\nfov = 30\n\
+             [render]\nbackground = {sky}\nambient = [0, 0, 0]\nmax_depth = 32\n\
+             [materials.g]\ncolor = [1, 1, 1]\ndiffuse = 0\nspecular = 0\ntransparency = 1\n\
+             eta = 1.5\nroughness = {roughness}\n\
+             [[boxes]]\nmin = [-50, 3, -50]\nmax = [50, 3.5, 50]\nmaterial = \"g\"\n"
+        ))
+    };
+    // Rays start at the eye, the prepared scene's origin.
+    let ray = Ray::new(Vec3::ZERO, Vec3::new(0.0, 1.0, -1.0).normalize());
+    for r in [0.2f32, 0.6] {
+        let c = mean_along(
+            &PreparedScene::new(&scene(r, "[0.5, 0.5, 0.5]")),
+            ray,
+            64,
+            1,
+        );
+        assert!((c - Vec3::splat(0.5)).abs().max_element() < 1e-5, "{c}");
+    }
+    let sky = "{ bottom = [0, 0, 0], top = [1, 1, 1] }";
+    let smooth = mean_along(&PreparedScene::new(&scene(0.0, sky)), ray, 1, 1);
+    let mut last = 0.0;
+    for r in [0.3f32, 0.7] {
+        let c = mean_along(&PreparedScene::new(&scene(r, sky)), ray, 256, 1);
+        let spread = (c.x - smooth.x).abs();
+        assert!(
+            c.x.is_finite() && c.x <= 1.0 && spread > last + 0.005,
+            "roughness {r}: {c} against the smooth slab's {smooth}"
+        );
+        last = spread;
+    }
+}
+
 #[test]
 fn fog_fades_each_segment_by_its_length() {
     let scene = |fog: &str| {

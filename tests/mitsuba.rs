@@ -1,7 +1,8 @@
 //! prism's path tracer against Mitsuba 3's (`scalar_rgb`, its `path` integrator), numbers
 //! for numbers, on a Lambertian room lit by a glowing sphere, a glowing rectangle and an
 //! inverse-square point light, and by a glowing ball and a glowing mesh (objects with
-//! `emission`), on smooth glass and a rough metal under the rectangle, and on matte, metal
+//! `emission`), on smooth glass and a rough metal under the rectangle, on two rough glass
+//! balls (GGX transmission, Mitsuba's `roughdielectric`) under it, and on matte, metal
 //! and glass balls lit only by a sky image with a small sun.
 //! tests/mitsuba/render.py writes each scene for Mitsuba with the lights in the physical
 //! units docs/effects.md gives for prism's.
@@ -45,7 +46,7 @@ macro_rules! rectangle {
 }
 
 /// The scenes by render.py's names: what each adds to the room.
-const SCENES: [(&str, &str); 5] = [
+const SCENES: [(&str, &str); 6] = [
     (
         "sphere_light",
         "[[lights]]\ntype = \"sphere\"\nposition = [0, 1.6, 0]\nradius = 0.15\n\
@@ -67,6 +68,18 @@ const SCENES: [(&str, &str); 5] = [
          roughness = 0.5\n\
          [[spheres]]\ncenter = [0.4, 0.35, 0.3]\nradius = 0.35\nmaterial = \"glass\"\n\
          [[spheres]]\ncenter = [-0.45, 1.1, -0.35]\nradius = 0.3\nmaterial = \"metal\"\n"
+        ),
+    ),
+    (
+        "rough_glass",
+        concat!(
+            rectangle!(),
+            "[materials.frosted]\ncolor = [1, 1, 1]\ndiffuse = 0\nspecular = 0\n\
+         transparency = 1\neta = 1.5\nfresnel = true\nroughness = 0.5\n\
+         [materials.misted]\ncolor = [1, 1, 1]\ndiffuse = 0\nspecular = 0\n\
+         transparency = 1\neta = 1.5\nfresnel = true\nroughness = 0.25\n\
+         [[spheres]]\ncenter = [0.4, 0.35, 0.3]\nradius = 0.35\nmaterial = \"frosted\"\n\
+         [[spheres]]\ncenter = [-0.45, 0.9, -0.35]\nradius = 0.3\nmaterial = \"misted\"\n"
         ),
     ),
     (

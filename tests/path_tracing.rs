@@ -123,6 +123,13 @@ fn lossless_materials_return_a_uniform_sky() {
             0.02,
         ),
         (
+            "rough glass",
+            "color = [1, 1, 1]\ndiffuse = 0\nspecular = 0\ntransparency = 1\neta = 1.5\n\
+             fresnel = true\nroughness = 0.4",
+            0.97,
+            0.03,
+        ),
+        (
             "rough gold-free metal",
             "color = [1, 1, 1]\ndiffuse = 0\nspecular = 0\nreflectivity = 1\nroughness = 0.4",
             0.97,

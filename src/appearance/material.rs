@@ -38,8 +38,9 @@ pub struct Material {
     /// angle) rather than the fixed `reflectivity` and `transparency`; false for the
     /// seed's Whitted materials.
     pub fresnel: bool,
-    /// How far mirror reflection spreads into a glossy lobe: 0 is a perfect mirror, 1 nearly
-    /// diffuse (the GGX microfacet roughness √α, one sampled direction per subsample).
+    /// How far mirror reflection and refraction spread into glossy lobes: 0 is a perfect
+    /// mirror, 1 nearly diffuse (the GGX microfacet roughness √α, one sampled direction per
+    /// subsample).
     pub roughness: f32,
     /// Beer–Lambert absorption of the inside per scene unit, per channel: light that
     /// travels d inside keeps exp(−absorption·d) of itself. Zero for clear media.
@@ -101,11 +102,13 @@ impl Material {
         FieldProblem::check_range("roughness", self.roughness, &limits::ROUGHNESS)?;
         FieldProblem::check_range("transparency", self.transparency, &limits::FRACTION)?;
         FieldProblem::check_range("reflectivity", self.reflectivity, &limits::FRACTION)?;
-        if self.roughness > 0.0 && self.reflectivity == 0.0 && !self.fresnel {
+        let refracts = self.transparency > 0.0 && self.bends();
+        if self.roughness > 0.0 && self.reflectivity == 0.0 && !self.fresnel && !refracts {
             return Err(FieldProblem::new(
                 "roughness",
-                "`roughness` spreads mirror reflection: it needs a `reflectivity` above 0 \
-                 (or `fresnel = true`)",
+                "`roughness` spreads mirror reflection and refraction: it needs a \
+                 `reflectivity` above 0, `fresnel = true`, or a `transparency` above 0 with an \
+                 `eta` other than 1",
             ));
         }
         if self.absorption != Vec3::ZERO {
@@ -275,6 +278,12 @@ mod tests {
                 absorption: Vec3::splat(1.0e12),
                 ..d.clone()
             },
+            Material {
+                transparency: 0.8,
+                eta: Some(1.33),
+                roughness: 0.2,
+                ..d.clone()
+            },
         ];
         for m in accepted {
             assert_eq!(m.check(), Ok(()), "{m:?}");
@@ -354,6 +363,15 @@ mod tests {
                 "roughness",
                 Material {
                     roughness: 0.5,
+                    ..d.clone()
+                },
+            ),
+            (
+                "roughness",
+                Material {
+                    roughness: 0.5,
+                    transparency: 0.5,
+                    eta: Some(1.0),
                     ..d.clone()
                 },
             ),

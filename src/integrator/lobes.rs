@@ -1,17 +1,23 @@
 //! A material's scattering at one hit, as the path tracer reads it: its lobes (Lambertian,
 //! a normalised Phong highlight, a mirror that is perfect or a GGX microfacet conductor, and
-//! transmission), their values, their densities and how to draw a direction from them.
+//! transmission, straight on, refracted, or through a rough interface), their values, their
+//! densities and how to draw a direction from them.
 //!
 //! The fields keep their Whitted meaning, shared out so that no surface returns more light
 //! than arrives: reflectivity and transparency (split by the Fresnel equations for `fresnel`
 //! glass) take their shares first; the highlight (`specular`) and the Lambertian albedo,
 //! colour × `diffuse` × (1 − `transparency`), share what is left, both scaled down alike when
 //! together they would return more (so a coloured mirror keeps its colour, dimmed).
+//!
+//! A rough surface that bends light joins its mirror and transmission into one lobe that
+//! reflects or refracts about each microfacet drawn (Walter et al. 2007), split there by the
+//! Fresnel equations for `fresnel` glass, else by the material's fixed shares.
 
-use crate::appearance::{reflect, schlick_reflectance};
+use super::microfacet::{ggx_d, ggx_g1, ggx_visible_normal};
+use crate::appearance::{fresnel_reflectance, reflect, refract, schlick_reflectance};
 use crate::numerics::orthonormal_basis;
 use glam::Vec3A;
-use std::f32::consts::{FRAC_1_PI, PI, TAU};
+use std::f32::consts::{FRAC_1_PI, TAU};
 
 /// The lobes of one hit.
 #[derive(Clone, Copy, Debug)]
@@ -27,8 +33,10 @@ pub(super) struct Lobes {
     conductor: Option<Vec3A>,
     /// The GGX width α of a rough mirror; 0 for a perfect one.
     alpha: f32,
-    /// The share transmitted (one direction: refracted or straight on).
+    /// The share transmitted (one direction: refracted or straight on, unless rough).
     transmit: f32,
+    /// A rough surface that bends light: the mirror and transmission are one lobe.
+    interface: Option<Interface>,
     /// How often each lobe is drawn: diffuse, highlight, mirror, transmission (summing to
     /// 1, or all 0 for a black surface).
     choose: [f32; 4],
@@ -49,6 +57,8 @@ pub(super) enum Scatter {
     Mirror { weight: Vec3A },
     /// Through the surface (refracted, or straight on), with this factor.
     Transmit { weight: Vec3A },
+    /// Through a rough surface that bends light, along `wi`, with this factor.
+    Refract { wi: Vec3A, weight: Vec3A },
     /// Nothing: the path ends.
     Absorbed,
 }
@@ -65,6 +75,18 @@ pub(super) struct LobeInputs {
     pub transmitted: f32,
     pub conductor: Option<Vec3A>,
     pub roughness: f32,
+    /// How the surface bends light, when it does.
+    pub interface: Option<Interface>,
+}
+
+/// A surface between two media that bends light.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Interface {
+    /// η(incident side) / η(other side).
+    pub eta: f32,
+    /// Whether each microfacet splits light by the Fresnel equations (`fresnel` glass),
+    /// rather than in the material's fixed shares.
+    pub fresnel: bool,
 }
 
 impl Lobes {
@@ -86,11 +108,17 @@ impl Lobes {
             highlight *= scale;
             diffuse *= scale;
         }
-        let mirror_albedo = match m.conductor {
-            Some(f0) => mirror * mean(f0),
-            None => mirror,
+        let alpha = m.roughness * m.roughness;
+        // Fresnel glass's shares are split again at each facet, so that light the mean
+        // surface would reflect whole may still be refracted by a tilted facet.
+        let interface = m
+            .interface
+            .filter(|i| alpha > 0.0 && (transmit > 0.0 || i.fresnel));
+        let mut choose = match (interface, m.conductor) {
+            (Some(_), _) => [mean(diffuse), highlight, mirror + transmit, 0.0],
+            (None, Some(f0)) => [mean(diffuse), highlight, mirror * mean(f0), transmit],
+            (None, None) => [mean(diffuse), highlight, mirror, transmit],
         };
-        let mut choose = [mean(diffuse), highlight, mirror_albedo, transmit];
         let total: f32 = choose.iter().sum();
         if total > 0.0 {
             choose.iter_mut().for_each(|p| *p /= total);
@@ -101,8 +129,9 @@ impl Lobes {
             shininess: m.shininess,
             mirror,
             conductor: m.conductor,
-            alpha: m.roughness * m.roughness,
+            alpha,
             transmit,
+            interface,
             choose,
             ns,
             n,
@@ -119,9 +148,27 @@ impl Lobes {
     /// The mirror's reflectance seen at cosine `cos` to the (micro)facet's normal.
     #[inline]
     fn mirror_tint(&self, cos: f32) -> Vec3A {
-        match self.conductor {
-            Some(f0) => schlick_reflectance(cos, f0) * self.mirror,
-            None => Vec3A::splat(self.mirror),
+        match (self.interface, self.conductor) {
+            (Some(interface), _) => {
+                Vec3A::splat((self.mirror + self.transmit) * self.reflected_share(interface, cos))
+            }
+            (None, Some(f0)) => schlick_reflectance(cos, f0) * self.mirror,
+            (None, None) => Vec3A::splat(self.mirror),
+        }
+    }
+
+    /// The share of a rough interface's light that a microfacet at cosine `cos` to the
+    /// arriving direction reflects: all of it past the critical angle.
+    #[inline]
+    fn reflected_share(&self, interface: Interface, cos: f32) -> f32 {
+        if interface.fresnel {
+            return fresnel_reflectance(cos, interface.eta);
+        }
+        let sin2_t = interface.eta * interface.eta * (1.0 - cos * cos).max(0.0);
+        if sin2_t >= 1.0 {
+            1.0
+        } else {
+            self.mirror / (self.mirror + self.transmit)
         }
     }
 
@@ -151,19 +198,28 @@ impl Lobes {
         if self.choose[2] > 0.0 && self.alpha > 0.0 {
             let cos_o = wo.dot(ns);
             if let (true, Some(h)) = (cos_o > 0.0, (wo + wi).try_normalize()) {
-                let cos_h = h.dot(ns);
-                let d = ggx_d(cos_h, self.alpha);
-                let g = ggx_g1(cos_o, self.alpha) * ggx_g1(cos_i, self.alpha);
-                let wo_h = wo.dot(h).max(1e-8);
-                f += self.mirror_tint(wo_h) * (d * g / (4.0 * cos_o * cos_i));
-                pdf += self.choose[2] * d * cos_h / (4.0 * wo_h);
+                let wo_h = wo.dot(h);
+                if wo_h > 0.0 {
+                    let d = ggx_d(h.dot(ns), self.alpha);
+                    let g_o = ggx_g1(cos_o, self.alpha);
+                    let g = g_o * ggx_g1(cos_i, self.alpha);
+                    let tint = self.mirror_tint(wo_h);
+                    f += tint * (d * g / (4.0 * cos_o * cos_i));
+                    // Visible normals drawn, reflected by the interface in its share.
+                    let reflected = match self.interface {
+                        Some(interface) => self.reflected_share(interface, wo_h),
+                        None => 1.0,
+                    };
+                    pdf += self.choose[2] * reflected * g_o * d / (4.0 * cos_o);
+                }
             }
         }
         (f, pdf)
     }
 
-    /// A direction drawn from the lobes with sample `u`.
-    pub fn sample(&self, u: (f32, f32)) -> Scatter {
+    /// A direction drawn from the lobes with sample `u`; a rough interface also asks
+    /// `decide` for one number, to reflect or refract.
+    pub fn sample(&self, u: (f32, f32), decide: impl FnOnce() -> f32) -> Scatter {
         // The first number picks the lobe, then is stretched back over [0, 1): a stratified
         // sample stays stratified within each lobe.
         let mut x = u.0;
@@ -189,9 +245,17 @@ impl Lobes {
                 };
             }
             2 => {
-                let cos = (1.0 / (1.0 + self.alpha * self.alpha * u.0 / (1.0 - u.0))).sqrt();
-                let m = around(self.ns, cone_point(cos, u.1));
-                reflect(-self.wo, m)
+                if self.wo.dot(self.ns) <= 0.0 {
+                    return Scatter::Absorbed;
+                }
+                let m = ggx_visible_normal(self.ns, self.alpha, self.wo, u);
+                let cos_m = self.wo.dot(m);
+                match self.interface {
+                    Some(interface) if decide() >= self.reflected_share(interface, cos_m) => {
+                        return self.refracted(interface, m, p);
+                    }
+                    _ => reflect(-self.wo, m),
+                }
             }
             _ => {
                 return Scatter::Transmit {
@@ -212,30 +276,30 @@ impl Lobes {
     }
 }
 
+impl Lobes {
+    /// The light a rough interface refracts through microfacet `m` (drawn among those `wo`
+    /// sees), with the lobe drawn with probability `p`: the weight is the masking of the
+    /// way out, as the other factors cancel against the density.
+    fn refracted(&self, interface: Interface, m: Vec3A, p: f32) -> Scatter {
+        let Some(wi) = refract(-self.wo, m, interface.eta) else {
+            return Scatter::Absorbed;
+        };
+        let cos_i = -wi.dot(self.ns);
+        if cos_i <= 0.0 || wi.dot(self.n) >= 0.0 {
+            return Scatter::Absorbed;
+        }
+        let share = self.mirror + self.transmit;
+        Scatter::Refract {
+            wi,
+            weight: Vec3A::splat(share * ggx_g1(cos_i, self.alpha) / p),
+        }
+    }
+}
+
 /// The mean of three channels.
 #[inline]
 fn mean(c: Vec3A) -> f32 {
     (c.x + c.y + c.z) / 3.0
-}
-
-/// GGX's distribution of microfacet normals at cosine `cos` to the normal.
-#[inline]
-fn ggx_d(cos: f32, alpha: f32) -> f32 {
-    if cos <= 0.0 {
-        return 0.0;
-    }
-    let c2 = cos * cos;
-    let a2 = alpha * alpha;
-    let denom = c2 * (a2 - 1.0) + 1.0;
-    a2 / (PI * denom * denom)
-}
-
-/// Smith's masking for GGX of a direction at cosine `cos` to the normal.
-#[inline]
-fn ggx_g1(cos: f32, alpha: f32) -> f32 {
-    let c2 = cos * cos;
-    let tan2 = (1.0 - c2).max(0.0) / c2;
-    2.0 / (1.0 + (1.0 + alpha * alpha * tan2).sqrt())
 }
 
 /// A direction at cosine `cos` to the pole, turned `2π·v` about it, in the pole's frame.
@@ -273,33 +337,48 @@ mod tests {
             transmitted: 0.0,
             conductor: None,
             roughness: 0.0,
+            interface: None,
         }
+    }
+
+    /// The lobes' draws over a `count` × `count` grid of sample points, each with a third,
+    /// independent number for a rough interface's choice.
+    fn draws(lobes: &Lobes, count: u32) -> impl Iterator<Item = Scatter> + '_ {
+        (0..count * count).map(move |k| {
+            let (i, j) = (k / count, k % count);
+            let u = (
+                (i as f32 + 0.5) / count as f32,
+                (j as f32 + 0.5) / count as f32,
+            );
+            let decide = ((i * 7919 + j * 104_729) % 1009) as f32 / 1009.0;
+            lobes.sample(u, || decide)
+        })
     }
 
     /// The albedo ∫ f·cos dω, estimated from the lobes' own samples, against its value;
     /// and the densities `sample` reports against a numerical integral of `eval`'s density
-    /// over the sphere (it must integrate to the share of lobes that spread light).
+    /// over the sphere, which must equal the share of samples that spread light.
     fn check(inputs: LobeInputs, wo: Vec3A, expected_albedo: Vec3A, tolerance: f32) {
         let n = Vec3A::Z;
         let lobes = Lobes::new(inputs, n, n, wo);
         let count = 256u32;
         let mut albedo = Vec3A::ZERO;
-        for i in 0..count {
-            for j in 0..count {
-                let u = (
-                    (i as f32 + 0.5) / count as f32,
-                    (j as f32 + 0.5) / count as f32,
-                );
-                match lobes.sample(u) {
-                    Scatter::Spread { wi, weight, pdf } => {
-                        let (f, p) = lobes.eval(wi);
-                        assert!((p - pdf).abs() <= 1e-4 * pdf, "{p} {pdf}");
-                        assert!((f * wi.z / pdf - weight).abs().max_element() < 1e-3);
-                        albedo += weight;
-                    }
-                    Scatter::Mirror { weight } | Scatter::Transmit { weight } => albedo += weight,
-                    Scatter::Absorbed => {}
+        let mut spread = 0u32;
+        for scatter in draws(&lobes, count) {
+            match scatter {
+                Scatter::Spread { wi, weight, pdf } => {
+                    let (f, p) = lobes.eval(wi);
+                    assert!((p - pdf).abs() <= 1e-4 * pdf, "{p} {pdf}");
+                    assert!((f * wi.z / pdf - weight).abs().max_element() < 1e-3);
+                    albedo += weight;
+                    spread += 1;
                 }
+                Scatter::Refract { wi, weight } => {
+                    assert!(wi.z < 0.0 && (wi.length() - 1.0).abs() < 1e-4);
+                    albedo += weight;
+                }
+                Scatter::Mirror { weight } | Scatter::Transmit { weight } => albedo += weight,
+                Scatter::Absorbed => {}
             }
         }
         albedo /= (count * count) as f32;
@@ -317,15 +396,9 @@ mod tests {
                 total += lobes.eval(w).1 as f64 * (2.0 / k as f64) * (TAU as f64 / k as f64);
             }
         }
-        let spreading: f32 = lobes.choose[0]
-            + lobes.choose[1]
-            + if lobes.alpha > 0.0 {
-                lobes.choose[2]
-            } else {
-                0.0
-            };
+        let spreading = spread as f64 / (count * count) as f64;
         assert!(
-            (total as f32 - spreading).abs() < 0.02,
+            (total - spreading).abs() < 0.02,
             "density integrates to {total}, not {spreading}"
         );
     }
@@ -416,7 +489,72 @@ mod tests {
         );
         assert!(!smooth.spreads());
         assert!(
-            matches!(smooth.sample((0.5, 0.5)), Scatter::Mirror { weight } if weight == Vec3A::ONE)
+            matches!(smooth.sample((0.5, 0.5), || 0.0), Scatter::Mirror { weight } if weight == Vec3A::ONE)
         );
+    }
+
+    /// Rough glass: at normal incidence light splits by the Fresnel equations (4% reflected
+    /// for η = 1.5) and what masking hides is lost; the fixed shares of a non-Fresnel
+    /// material are kept; from inside past the critical angle everything is reflected.
+    #[test]
+    fn rough_interface_shares_light_like_the_smooth_one() {
+        let glass = |fresnel: bool, eta: f32, reflected: f32, transmitted: f32| LobeInputs {
+            diffuse: Vec3A::ZERO,
+            reflected,
+            transmitted,
+            roughness: 0.3,
+            interface: Some(Interface { eta, fresnel }),
+            ..inputs()
+        };
+        let wo = Vec3A::Z;
+        let lobes = Lobes::new(glass(true, 1.0 / 1.5, 0.04, 0.96), Vec3A::Z, Vec3A::Z, wo);
+        assert!(lobes.spreads());
+        check(
+            glass(true, 1.0 / 1.5, 0.04, 0.96),
+            wo,
+            Vec3A::splat(0.985),
+            0.015,
+        );
+        // Reflected and refracted apart: the reflected share is Fresnel's at the facets.
+        let count = 200u32;
+        let (mut up, mut down) = (0.0f32, 0.0f32);
+        for scatter in draws(&lobes, count) {
+            match scatter {
+                Scatter::Spread { weight, .. } => up += weight.x,
+                Scatter::Refract { weight, .. } => down += weight.x,
+                _ => {}
+            }
+        }
+        let n = (count * count) as f32;
+        assert!((up / n - 0.04).abs() < 0.01, "reflected {}", up / n);
+        assert!((down / n - 0.95).abs() < 0.02, "refracted {}", down / n);
+        // Fixed shares, 0.3 and 0.6, at a slant.
+        let slant = Vec3A::new(0.5, 0.0, 0.8).normalize();
+        check(
+            glass(false, 1.0 / 1.5, 0.3, 0.6),
+            slant,
+            Vec3A::splat(0.88),
+            0.025,
+        );
+        // From inside glass at 60° to the normal, past the critical angle (41.8°): the
+        // facets near the mean normal reflect it all, and nothing is refracted.
+        let inside = Vec3A::new(0.866, 0.0, 0.5);
+        let lobes = Lobes::new(
+            LobeInputs {
+                roughness: 0.05,
+                ..glass(true, 1.5, 1.0, 0.0)
+            },
+            Vec3A::Z,
+            Vec3A::Z,
+            inside,
+        );
+        assert!(lobes.interface.is_some());
+        for i in 0..64 {
+            let u = ((i as f32 + 0.5) / 64.0, 0.37);
+            assert!(!matches!(
+                lobes.sample(u, || 0.999),
+                Scatter::Refract { .. }
+            ));
+        }
     }
 }

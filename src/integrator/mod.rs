@@ -11,6 +11,7 @@ pub mod kind;
 mod light_sample;
 mod lobes;
 mod local_light;
+mod microfacet;
 mod path;
 mod path_tracer;
 mod reflection;

@@ -10,7 +10,7 @@
 //! scattered rays only (weight 1); the background is reached the same way.
 
 use super::Integrator;
-use super::lobes::{LobeInputs, Lobes, Scatter};
+use super::lobes::{Interface, LobeInputs, Lobes, Scatter};
 use super::path::MAX_STRAIGHT_CROSSINGS;
 use crate::accel::{Reach, Toward};
 use crate::appearance::{EnvironmentDistribution, reflect, refract};
@@ -128,6 +128,10 @@ impl<'a> Integrator<'a> {
                     transmitted,
                     conductor: material.conductor.map(Vec3A::from),
                     roughness: material.roughness,
+                    interface: material.bends().then(|| Interface {
+                        eta: self.eta_ratio(&at),
+                        fresnel: material.fresnel,
+                    }),
                 },
                 at.ns,
                 at.n,
@@ -144,7 +148,8 @@ impl<'a> Integrator<'a> {
                 throughput /= carry;
             }
             let d = q.ray.dir;
-            let (dir, weight) = match lobes.sample(self.stream.next_2d()) {
+            let u = self.stream.next_2d();
+            let (dir, weight) = match lobes.sample(u, || self.stream.next_2d().0) {
                 Scatter::Absorbed => break,
                 Scatter::Spread { wi, weight, pdf } => {
                     scattered_from = Some((at.surface.point, pdf));
@@ -171,6 +176,12 @@ impl<'a> Integrator<'a> {
                     };
                     t_min = hit.shape.t;
                     continue;
+                }
+                Scatter::Refract { wi, weight } => {
+                    // No light's samples reach through a surface that bends light.
+                    scattered_from = None;
+                    self.media = self.media_beyond(&at);
+                    (wi, weight)
                 }
                 Scatter::Transmit { weight } => {
                     scattered_from = None;

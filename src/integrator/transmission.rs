@@ -1,6 +1,8 @@
 //! Transmission: light through a transparent surface, bent by Snell's law when the
-//! material has an index of refraction other than 1, else going on along the same ray.
+//! material has an index of refraction other than 1 (about a GGX microfacet normal drawn
+//! per subsample when it is rough), else going on along the same ray.
 
+use super::microfacet::ggx_normal;
 use super::path::{MAX_STRAIGHT_CROSSINGS, Path};
 use super::{Integrator, Shading};
 use crate::appearance::{Material, reflect, refract};
@@ -55,10 +57,21 @@ impl Integrator<'_> {
             let ratio = self.eta_ratio(at);
             // Past the critical angle the transmitted light is reflected inside; either
             // way the ray must go where the true surface says.
-            let dir = self.turned(at, |n| match refract(ray.dir, n, ratio) {
+            let bend = |n: Vec3A| match refract(ray.dir, n, ratio) {
                 Some(dir) => (dir, false),
                 None => (reflect(ray.dir, n), true),
+            };
+            let roughness = material.roughness;
+            // A rough surface bends each subsample's ray about a microfacet normal, unless
+            // that would send it out on the wrong side.
+            let rough = (roughness > 0.0).then(|| {
+                let m = ggx_normal(at.ns, roughness * roughness, self.stream.next_2d());
+                bend(m)
             });
+            let dir = match rough {
+                Some((dir, outward)) if (dir.dot(at.n) > 0.0) == outward => dir,
+                _ => self.turned(at, bend),
+            };
             let origin = self.leave(&at.surface, at.n, dir);
             let q = RayQuery::new(Ray::new(origin, dir));
             let inside = self.inside(at, dir);

@@ -424,8 +424,9 @@ mod tests {
                     roughness: 0.5,
                     ..base.clone()
                 },
-                "spheres 0: `roughness` spreads mirror reflection: it needs a `reflectivity` \
-                 above 0 (or `fresnel = true`)",
+                "spheres 0: `roughness` spreads mirror reflection and refraction: it needs a \
+                 `reflectivity` above 0, `fresnel = true`, or a `transparency` above 0 with an \
+                 `eta` other than 1",
             ),
             (
                 Material {

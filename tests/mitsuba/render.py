@@ -162,6 +162,25 @@ def scene(name):
             "radius": 0.3,
             "bsdf": ROUGH_METAL,
         }
+    elif name == "rough_glass":
+        # prism: Fresnel glass with `roughness` 0.5 and 0.25: GGX of α = roughness².
+        s.update(rectangle_light([math.pi / 0.25] * 3))
+        for key, center, roughness in (
+            ("frosted", [0.4, 0.35, 0.3], 0.5),
+            ("misted", [-0.45, 0.9, -0.35], 0.25),
+        ):
+            s[key] = {
+                "type": "sphere",
+                "center": center,
+                "radius": 0.35 if key == "frosted" else 0.3,
+                "bsdf": {
+                    "type": "roughdielectric",
+                    "distribution": "ggx",
+                    "alpha": roughness * roughness,
+                    "int_ior": 1.5,
+                    "ext_ior": 1.0,
+                },
+            }
     elif name == "glowing_objects":
         # prism: a ball and a mesh (cube.obj, which the test writes beside the sky) whose
         # material has `emission`, black otherwise: their surfaces glow, found both by
