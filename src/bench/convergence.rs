@@ -102,6 +102,7 @@ impl Strategy {
 }
 
 /// One measurement: a strategy's image after some passes.
+#[derive(Clone, Debug)]
 pub(super) struct Point {
     /// The strategy's name.
     pub name: &'static str,
@@ -119,8 +120,6 @@ pub(super) enum Measure {
     Finished,
     /// After every pass.
     EveryPass,
-    /// After passes 1, 2, 4, 8, … and the last.
-    PowersOfTwo,
 }
 
 /// A strategy the bench times: its name, when its error is measured, and its settings.
@@ -182,7 +181,6 @@ pub(super) fn measure(
             let wanted = match timed.measure {
                 Measure::Finished => job.is_converged(),
                 Measure::EveryPass => true,
-                Measure::PowersOfTwo => pass.is_power_of_two() || job.is_converged(),
             };
             if !wanted {
                 continue;
@@ -442,9 +440,14 @@ pub(super) fn plot(path: &Path, points: &[Point], series: &[(&str, RGBColor)]) -
             .y_desc(format!("{name} against the reference (log)"))
             .draw()?;
         for &(name, color) in series {
-            let series: Vec<(f64, f64)> = points
-                .iter()
-                .filter(|p| p.name == name)
+            let of_series = points.iter().filter(|p| p.name == name);
+            let series: Vec<(f64, f64)> =
+                of_series.clone().map(|p| (p.seconds, value(p))).collect();
+            // A strategy measured after every pass is a line, dotted at power-of-two passes
+            // only.
+            let every_pass = series.len() > 16;
+            let dots: Vec<(f64, f64)> = of_series
+                .filter(|p| !every_pass || p.passes.is_power_of_two())
                 .map(|p| (p.seconds, value(p)))
                 .collect();
             chart
@@ -455,11 +458,7 @@ pub(super) fn plot(path: &Path, points: &[Point], series: &[(&str, RGBColor)]) -
                 });
             // Single-image strategies (the seed's 2×2) are one larger dot.
             let radius = if series.len() == 1 { 6 } else { 3 };
-            chart.draw_series(
-                series
-                    .iter()
-                    .map(|&p| Circle::new(p, radius, color.filled())),
-            )?;
+            chart.draw_series(dots.iter().map(|&p| Circle::new(p, radius, color.filled())))?;
         }
         chart
             .configure_series_labels()
@@ -507,8 +506,14 @@ fn cache_dir() -> PathBuf {
     base.join("prism/bench")
 }
 
-pub(super) fn first_below<'p>(points: &'p [Point], name: &str, flip: f64) -> Option<&'p Point> {
-    points.iter().find(|p| p.name == name && p.flip <= flip)
+/// The first point of strategy `name` whose error by `metric` is at most `error`.
+pub(super) fn first_below<'p>(
+    points: &'p [Point],
+    name: &str,
+    error: f64,
+    metric: impl Fn(&Point) -> f64,
+) -> Option<&'p Point> {
+    points.iter().find(|p| p.name == name && metric(p) <= error)
 }
 
 fn headline(
@@ -692,7 +697,7 @@ fn grid_error_section(md: &mut String, points: &[Point]) -> Result<()> {
     )?;
     for strategy in Strategy::ALL.into_iter().filter(|s| s.every_pass()) {
         let name = strategy.name();
-        match first_below(points, name, grid4.flip) {
+        match first_below(points, name, grid4.flip, |p| p.flip) {
             Some(p) => writeln!(
                 md,
                 "| {name} | {:.3} s | {:.2} | {:.0}% |",

@@ -100,7 +100,8 @@ pub fn run(args: RenderArgs) -> Result<()> {
 /// figures and the way out, before anything is allocated.
 fn check_memory(settings: &RenderSettings, plan: &Plan, format: ImageFormat) -> Result<()> {
     let (width, height) = (settings.width, settings.height);
-    let margin = prism::render::adaptive_margin(settings);
+    // The widest margin, a noisy render's: memory is checked before the scene is prepared.
+    let margin = prism::render::adaptive_margin(settings, true);
     let window = plan.region.grown(margin, width, height);
     let need = RenderMemory::of(window, plan.region, format, plan.options.depth);
     let Some((available, source)) = available_memory() else {
@@ -161,7 +162,6 @@ fn check_outputs(
     Ok(())
 }
 
-/// The settings, region and output options, from the flags and the frame's scene.
 /// The finished film `film` of `job` (of `scene`, the whole frame) denoised.
 fn denoised(
     film: &prism::render::Accumulator,
@@ -193,6 +193,7 @@ fn denoise_missing() -> String {
     format!("--denoise: {}", prism::render::DENOISE_NOT_BUILT)
 }
 
+/// The settings, region and output options, from the flags and the frame's scene.
 fn make_plan(args: &RenderArgs, scene: &Scene) -> Result<Plan> {
     let mut settings = RenderSettings::for_scene(&scene.render, args.width, args.height, args.aa)?;
     if let Some(n) = args.samples {

@@ -91,7 +91,8 @@ pub struct RenderArgs {
     /// Stop refining pixels whose subsamples agree.
     #[arg(long)]
     pub adaptive: bool,
-    /// Adaptive tolerance: estimated error of a pixel's mean luminance, 0..1 scale.
+    /// Adaptive tolerance: estimated error of a pixel's mean luminance, 0..1 scale (in a
+    /// noisy render, at 16 subsamples: a pixel that needs n stops at this × √(n/16)).
     #[arg(long, default_value_t = AdaptiveSettings::default().tolerance, allow_negative_numbers = true, requires = "adaptive")]
     pub tolerance: f32,
     /// Adaptive: least contrast (0..1, any channel) of an edge worth refining beside.

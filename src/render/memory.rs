@@ -3,6 +3,7 @@
 //! a way out (tiles), rather than aborting part-way when an allocation fails.
 
 use super::accumulator::PixelSum;
+use super::adaptive::PixelNoise;
 use super::image_file::{BitDepth, ImageFormat};
 use super::region::PixelRect;
 
@@ -11,7 +12,8 @@ use super::region::PixelRect;
 pub struct RenderMemory {
     /// The pixel sums of the rendered window (the region and its adaptive margin).
     pub film: u64,
-    /// The per-pixel flags of the progressive render (active, settled).
+    /// The per-pixel state of the progressive render's adaptive sampling (whether active,
+    /// and its noise).
     pub flags: u64,
     /// The region's sums cut from a larger window (none for a whole frame).
     pub crop: u64,
@@ -34,7 +36,7 @@ impl RenderMemory {
         };
         Self {
             film: window_px * sum,
-            flags: window_px * 2,
+            flags: window_px * (1 + std::mem::size_of::<PixelNoise>() as u64),
             crop: if window == region { 0 } else { region_px * sum },
             image: region_px * bytes * copies,
         }

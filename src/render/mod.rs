@@ -3,6 +3,7 @@
 //! so a one-shot render equals a finished progressive one by construction.
 
 mod accumulator;
+mod adaptive;
 mod compare;
 #[cfg(feature = "denoise")]
 mod denoise;
@@ -33,7 +34,7 @@ pub use image_read::{
 pub use memory::{MemorySource, RenderMemory, available_memory, gib};
 pub use output::{OutputError, PendingFile, remove_pending_files, write_bytes};
 pub use pass::{BAND_ROWS, PassStats, render_pass};
-pub use progressive::{PassOutcome, ProgressiveRender};
+pub use progressive::{PassOutcome, ProgressiveRender, is_stochastic};
 pub use region::{PixelRect, RegionError, adaptive_margin};
 pub use settings::{AdaptiveSettings, DEFAULT_MIN_WEIGHT, RenderSettings, SettingsError};
 pub use stitch::{StitchError, StitchPlan, plan_stitch, stitch};
@@ -85,7 +86,9 @@ pub fn render_region(
     stop: &(dyn Fn() -> bool + Sync),
     mut on_pass: impl FnMut(&ProgressiveRender, &PassStats),
 ) -> ProgressiveRender {
-    let window = region.grown(adaptive_margin(&settings), settings.width, settings.height);
+    let stochastic = is_stochastic(&scene, &camera, &settings);
+    let margin = adaptive_margin(&settings, stochastic);
+    let window = region.grown(margin, settings.width, settings.height);
     let mut job = ProgressiveRender::in_window(scene, camera, settings, window);
     // A stop part-way through a pass leaves some pixels with one subsample more than
     // others: each pixel's mean is still its own estimate so far.

@@ -1,7 +1,8 @@
 //! The progressive render: a state machine that adds one pass at a time, can be cancelled
 //! and restarted at any moment, and knows when it has converged.
 
-use super::accumulator::{Accumulator, PixelSum};
+use super::accumulator::Accumulator;
+use super::adaptive::{self, PixelNoise};
 use super::pass::{PassStats, render_pass};
 use super::region::PixelRect;
 use super::settings::RenderSettings;
@@ -11,7 +12,6 @@ use crate::camera::{Camera, CameraRays};
 use crate::integrator::{Emitters, IntegratorKind, RayCounts};
 use crate::sampler::Sampler;
 use crate::scene::PreparedScene;
-use rayon::prelude::*;
 use std::sync::Arc;
 
 /// What one step of a progressive render did.
@@ -44,9 +44,8 @@ pub struct ProgressiveRender {
     accumulator: Accumulator,
     /// Pixels still refining (all of them unless adaptive sampling has stopped some).
     active: Vec<bool>,
-    /// Whether each pixel's estimate was within tolerance at the last check: in a noisy
-    /// (stochastic) render a pixel stops only after two checks in a row.
-    settled_before: Vec<bool>,
+    /// What adaptive sampling keeps of each pixel's noise between checks.
+    noise: Vec<PixelNoise>,
     active_count: usize,
     passes_done: u32,
     /// The accumulator holds a partial pass: the next step restarts at pass 0.
@@ -82,7 +81,7 @@ impl ProgressiveRender {
             emitters: None,
             accumulator: Accumulator::new(window.width(), window.height()),
             active: vec![true; pixels],
-            settled_before: vec![false; pixels],
+            noise: vec![PixelNoise::default(); pixels],
             active_count: pixels,
             scene,
             camera,
@@ -100,7 +99,7 @@ impl ProgressiveRender {
     /// holds the old ones.
     pub fn restart(&mut self) {
         self.active.fill(true);
-        self.settled_before.fill(false);
+        self.noise.fill(PixelNoise::default());
         self.active_count = self.active.len();
         self.passes_done = 0;
         self.dirty = false;
@@ -187,18 +186,8 @@ impl ProgressiveRender {
         PassOutcome::Finished(stats)
     }
 
-    /// Adaptive sampling. A pixel stops once it has its minimum samples and the estimated
-    /// error of its mean luminance is within tolerance (`PixelSum::error_estimate`: the full
-    /// mean against the mean of the first half, at power-of-two counts). Signatures find
-    /// edges that the estimate cannot see yet: a pixel beside an edge goes on to at least
-    /// `edge_samples`, since its first few subsamples may have missed the edge. The edge is
-    /// one between it and a neighbour when either of them is mixed (its own subsamples
-    /// disagree) or their signatures differ, and when their means differ by more than
-    /// `edge_contrast`. A stopped pixel never restarts, so every active pixel holds exactly
-    /// subsamples 0 .. passes_done. When the render is stochastic (soft shadows, a lens,
-    /// glossy lobes: `is_stochastic`), a pixel's noise can make the two halves agree by
-    /// chance, so it stops only when its estimate is within tolerance at two power-of-two
-    /// checks in a row.
+    /// Adaptive sampling (adaptive.rs): after a power-of-two pass count at or past the
+    /// minimum, stops the pixels whose estimated error is within tolerance.
     fn update_active(&mut self) {
         let Some(adaptive) = self.settings.adaptive else {
             return;
@@ -208,41 +197,22 @@ impl ProgressiveRender {
         if n < adaptive.min_samples || n < 2 || !n.is_power_of_two() {
             return;
         }
-        let near_edges_decided = n >= adaptive.edge_samples;
-        let confirm = self.is_stochastic();
-        let (w, h) = (self.window.width() as usize, self.window.height() as usize);
-        let pixels = &self.accumulator.pixels;
-        let count: usize = self
-            .active
-            .par_chunks_mut(w)
-            .zip(self.settled_before.par_chunks_mut(w))
-            .enumerate()
-            .map(|(y, (row, before))| {
-                let mut count = 0;
-                for (x, (active, before)) in row.iter_mut().zip(before).enumerate() {
-                    if !*active {
-                        continue;
-                    }
-                    let p = &pixels[y * w + x];
-                    let within = p.error_estimate() <= adaptive.tolerance;
-                    let settled = within && (!confirm || *before);
-                    *before = within;
-                    let beside_edge = settled
-                        && !near_edges_decided
-                        && beside_edge(pixels, w, h, x, y, adaptive.edge_contrast);
-                    *active = !settled || beside_edge;
-                    count += *active as usize;
-                }
-                count
-            })
-            .sum();
-        self.active_count = count;
+        let stochastic = self.is_stochastic();
+        self.active_count = adaptive::update_active(
+            &self.accumulator.pixels,
+            &mut self.active,
+            &mut self.noise,
+            self.window.width() as usize,
+            n,
+            adaptive,
+            stochastic,
+        );
     }
 
-    /// Whether the render draws random numbers beyond the pixel positions (a lens, an area
-    /// light, a glossy material), so that its pixels are noisy.
+    /// Whether the render draws random numbers beyond the pixel positions, so that its
+    /// pixels are noisy (`is_stochastic`).
     pub fn is_stochastic(&self) -> bool {
-        self.camera.aperture > 0.0 || self.scene.appearance.is_stochastic()
+        is_stochastic(&self.scene, &self.camera, &self.settings)
     }
 
     /// Whether every pixel has all its subsamples, or adaptive sampling has stopped them all.
@@ -316,84 +286,10 @@ impl ProgressiveRender {
     }
 }
 
-/// Whether pixel (x, y) and one of its eight neighbours lie on either side of an edge (see
-/// `ProgressiveRender::update_active`).
-fn beside_edge(pixels: &[PixelSum], w: usize, h: usize, x: usize, y: usize, contrast: f32) -> bool {
-    let p = &pixels[y * w + x];
-    let mut mean = None;
-    for ny in y.saturating_sub(1)..(y + 2).min(h) {
-        for nx in x.saturating_sub(1)..(x + 2).min(w) {
-            let q = &pixels[ny * w + nx];
-            let edge = p.mixed || q.mixed || q.signature != p.signature;
-            if edge && (nx, ny) != (x, y) {
-                let mean = *mean.get_or_insert_with(|| p.mean());
-                if (q.mean() - mean).abs().max_element() > contrast {
-                    return true;
-                }
-            }
-        }
-    }
-    false
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use glam::Vec3;
-
-    /// A 3×3 block of pixels, each with four subsamples of one colour and signature, the
-    /// centre one possibly mixed.
-    fn block(colors: [f32; 9], signatures: [u32; 9], centre_mixed: bool) -> Vec<PixelSum> {
-        let mut pixels: Vec<PixelSum> = colors
-            .iter()
-            .zip(signatures)
-            .map(|(&c, s)| {
-                let mut p = PixelSum::default();
-                for _ in 0..4 {
-                    p.add(Vec3::splat(c), s);
-                }
-                p
-            })
-            .collect();
-        pixels[4].mixed = centre_mixed;
-        pixels
-    }
-
-    #[test]
-    fn an_edge_needs_a_signature_change_and_contrast() {
-        let edge = |pixels: &[PixelSum], contrast| beside_edge(pixels, 3, 3, 1, 1, contrast);
-        // A neighbour on another surface, 0.5 brighter: an edge.
-        let strong = block(
-            [0.2, 0.2, 0.7, 0.2, 0.2, 0.2, 0.2, 0.2, 0.2],
-            [1, 1, 2, 1, 1, 1, 1, 1, 1],
-            false,
-        );
-        assert!(edge(&strong, 0.04));
-        assert!(!edge(&strong, 0.6), "fainter than asked for");
-        // Another surface of almost the same colour: nothing worth finding.
-        let faint = block(
-            [0.2, 0.2, 0.21, 0.2, 0.2, 0.2, 0.2, 0.2, 0.2],
-            [1, 1, 2, 1, 1, 1, 1, 1, 1],
-            false,
-        );
-        assert!(!edge(&faint, 0.04));
-        assert!(edge(&faint, 0.0), "zero contrast searches every edge");
-        // A texture gradient on one surface: contrast but no edge.
-        let gradient = block([0.1, 0.2, 0.3, 0.1, 0.2, 0.3, 0.1, 0.2, 0.3], [1; 9], false);
-        assert!(!edge(&gradient, 0.04));
-        // The centre pixel straddles an edge its neighbours show on one side.
-        assert!(edge(
-            &block([0.2, 0.2, 0.2, 0.2, 0.5, 0.2, 0.2, 0.2, 0.2], [1; 9], true),
-            0.04
-        ));
-        // A contrasting pixel two steps away is not a neighbour: corner (0, 0) of a 3×3
-        // image sees only its own 2×2 corner.
-        let far = block(
-            [0.2, 0.2, 0.2, 0.2, 0.2, 0.2, 0.2, 0.2, 0.9],
-            [1, 1, 1, 1, 1, 1, 1, 1, 2],
-            false,
-        );
-        assert!(!beside_edge(&far, 3, 3, 0, 0, 0.04));
-        assert!(beside_edge(&far, 3, 3, 1, 1, 0.04));
-    }
+/// Whether a render draws random numbers beyond the pixel positions (a lens, an area light,
+/// a glossy material, paths), so that its pixels are noisy.
+pub fn is_stochastic(scene: &PreparedScene, camera: &Camera, settings: &RenderSettings) -> bool {
+    camera.aperture > 0.0
+        || scene.appearance.is_stochastic()
+        || settings.integrator == IntegratorKind::Path
 }

@@ -239,15 +239,21 @@ impl std::fmt::Display for PixelRect {
 
 /// How many pixels around a region its render must include to decide the region's pixels
 /// as the full frame does: one per adaptive check that looks at neighbours (those at
-/// power-of-two pass counts from the minimum up to, not including, `edge_samples` or the
-/// last pass). None without adaptive sampling.
-pub fn adaptive_margin(settings: &RenderSettings) -> u32 {
+/// power-of-two pass counts from the minimum up to, not including, the last pass; in a
+/// render that is not `stochastic`, only those before `edge_samples`). None without
+/// adaptive sampling.
+pub fn adaptive_margin(settings: &RenderSettings, stochastic: bool) -> u32 {
     let Some(adaptive) = settings.adaptive else {
         return 0;
     };
     let first = adaptive.min_samples.max(2);
-    // A check after the last pass changes nothing.
-    let last = adaptive.edge_samples.min(settings.total_passes());
+    // A check after the last pass changes nothing; a noisy render's pools its neighbours'
+    // noise at every check.
+    let last = if stochastic {
+        settings.total_passes()
+    } else {
+        adaptive.edge_samples.min(settings.total_passes())
+    };
     (1..32)
         .map(|k| 1u32 << k)
         .filter(|&n| n >= first && n < last)
@@ -326,18 +332,25 @@ mod tests {
     #[test]
     fn the_margin_counts_the_checks_that_look_at_neighbours() {
         let mut s = RenderSettings::new(10, 10, 4);
-        assert_eq!(adaptive_margin(&s), 0, "no adaptive sampling, no margin");
+        assert_eq!(
+            adaptive_margin(&s, true),
+            0,
+            "no adaptive sampling, no margin"
+        );
         s.adaptive = Some(AdaptiveSettings::default());
-        // min 4, edge 8 of 16 passes: only the check at 4 looks at neighbours.
-        assert_eq!(adaptive_margin(&s), 1);
+        // min 4, edge 8 of 16 passes: only the check at 4 looks at neighbours, unless the
+        // render is noisy, when the one at 8 pools its neighbours' noise too.
+        assert_eq!(adaptive_margin(&s, false), 1);
+        assert_eq!(adaptive_margin(&s, true), 2);
         s.adaptive = Some(AdaptiveSettings {
             min_samples: 1,
             edge_samples: 64,
             ..AdaptiveSettings::default()
         });
         // Checks at 2, 4 and 8 (the one after the 16th and last pass changes nothing).
-        assert_eq!(adaptive_margin(&s), 3);
+        assert_eq!(adaptive_margin(&s, false), 3);
         s.samples = Some(1000);
-        assert_eq!(adaptive_margin(&s), 5, "2..32");
+        assert_eq!(adaptive_margin(&s, false), 5, "2..32");
+        assert_eq!(adaptive_margin(&s, true), 9, "2..512, of 1000 passes");
     }
 }

@@ -37,7 +37,8 @@ pub struct RenderSettings {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AdaptiveSettings {
     /// A pixel stops when the estimated error of its mean luminance falls below this
-    /// (on the 0..1 scale; 1/255 is one 8-bit step).
+    /// (on the 0..1 scale; 1/255 is one 8-bit step). In a noisy render (adaptive.rs) this
+    /// is the error at 16 subsamples; a pixel that needs n stops at this × √(n/16).
     pub tolerance: f32,
     /// Every pixel gets at least this many subsamples before it may stop.
     pub min_samples: u32,
