@@ -1,9 +1,9 @@
 //! prism's path tracer against Mitsuba 3's (`scalar_rgb`, its `path` integrator), numbers
 //! for numbers, on a Lambertian room lit by a glowing sphere, a glowing rectangle and an
-//! inverse-square point light, and by a glowing ball and a glowing mesh (objects with
-//! `emission`), on smooth glass and a rough metal under the rectangle, on two rough glass
-//! balls (GGX transmission, Mitsuba's `roughdielectric`) under it, and on matte, metal
-//! and glass balls lit only by a sky image with a small sun.
+//! inverse-square point light, and by glowing objects (a ball, a mesh, a turned box and a
+//! capped cylinder: `emission`), on smooth glass and a rough metal under the rectangle, on
+//! two rough glass balls (GGX transmission, Mitsuba's `roughdielectric`) under it, and on
+//! matte, metal and glass balls lit only by a sky image with a small sun.
 //! tests/mitsuba/render.py writes each scene for Mitsuba with the lights in the physical
 //! units docs/effects.md gives for prism's.
 //!
@@ -88,7 +88,12 @@ const SCENES: [(&str, &str); 6] = [
          [materials.cool]\ncolor = [0, 0, 0]\nspecular = 0\nemission = [2, 4, 6]\n\
          [[spheres]]\ncenter = [0.45, 1.5, -0.3]\nradius = 0.2\nmaterial = \"warm\"\n\
          [[meshes]]\npath = \"cube.obj\"\nsmooth = false\nmaterial = \"cool\"\n\
-         translate = [-0.5, 1.6, 0.3]\nscale = 0.15\n",
+         translate = [-0.5, 1.6, 0.3]\nscale = 0.15\n\
+         [materials.glow_red]\ncolor = [0, 0, 0]\nspecular = 0\nemission = [5, 1.5, 1]\n\
+         [materials.glow_green]\ncolor = [0, 0, 0]\nspecular = 0\nemission = [1, 4, 1.5]\n\
+         [[boxes]]\nmin = [-0.15, -0.15, -0.15]\nmax = [0.15, 0.15, 0.15]\nrotate = [0, 30, 0]\n\
+         translate = [0.35, 0.15, 0.4]\nmaterial = \"glow_red\"\n\
+         [[cylinders]]\nbase = [-0.45, 0.7, -0.4]\nradius = 0.1\nheight = 0.4\nmaterial = \"glow_green\"\n",
     ),
 ];
 

@@ -1,9 +1,10 @@
 //! `prism bench path-tracing`: the path tracer's error against time on the room that
-//! tests/mitsuba.rs compares with Mitsuba 3 (lit by a glowing rectangle), and Mitsuba's own
-//! time and error at the same samples per pixel where Mitsuba is installed.
+//! tests/mitsuba.rs compares with Mitsuba 3 (lit by a glowing rectangle), denoised too in a
+//! build with the `denoise` feature, and Mitsuba's own time and error at the same samples
+//! per pixel where Mitsuba is installed.
 
 use super::convergence::{
-    Measure, Size, Timed, errors_of_means, measure, reference, to_rgb8, write_csv,
+    Measure, Point, Size, Timed, errors_of_means, measure, reference, to_rgb8, write_csv,
 };
 use anyhow::{Context, Result, bail};
 use glam::Vec3;
@@ -31,6 +32,8 @@ const MAX_DEPTH: u32 = 5;
 
 const PRISM: &str = "prism, path tracer";
 const MITSUBA: &str = "Mitsuba 3, scalar_rgb path";
+#[cfg(feature = "denoise")]
+const DENOISED: &str = "prism, path tracer, denoised";
 
 pub fn run(cfg: Config) -> Result<()> {
     let size = if cfg.quick {
@@ -63,22 +66,37 @@ pub fn run(cfg: Config) -> Result<()> {
     let prepared = Arc::new(PreparedScene::new(&scene));
     let reference = reference(&text, &prepared, scene.camera, &size)?;
     let reference_rgb8 = to_rgb8(&reference, size.width, size.height);
-    let strategies: Vec<Timed> = counts
+    // prism also renders the 1,024-sample image that denoised ones are held against.
+    let prism_counts: Vec<u32> = if cfg.quick {
+        counts.to_vec()
+    } else {
+        counts.iter().copied().chain([1024]).collect()
+    };
+    let settings_of = |n: u32| {
+        let mut s =
+            RenderSettings::for_scene(&scene.render, Some(size.width), Some(size.height), None)
+                .expect("the bench's settings are valid");
+        s.samples = Some(n);
+        s
+    };
+    let strategies: Vec<Timed> = prism_counts
         .iter()
-        .map(|&n| {
-            let mut s =
-                RenderSettings::for_scene(&scene.render, Some(size.width), Some(size.height), None)
-                    .expect("the bench's settings are valid");
-            s.samples = Some(n);
-            Timed {
-                name: PRISM,
-                measure: Measure::Finished,
-                settings: s,
-            }
+        .map(|&n| Timed {
+            name: PRISM,
+            measure: Measure::Finished,
+            settings: settings_of(n),
         })
         .collect();
     let (mut points, _, _) = measure(&prepared, scene.camera, &strategies, &reference, cfg.runs);
 
+    let denoised = denoised_points(
+        &prepared,
+        scene.camera,
+        counts.iter().map(|&n| settings_of(n)),
+        &reference,
+        &reference_rgb8,
+        cfg.runs,
+    )?;
     let python = mitsuba_python();
     if let Some(python) = &python {
         let dir = cfg.out_dir.join("mitsuba");
@@ -94,7 +112,7 @@ pub fn run(cfg: Config) -> Result<()> {
             times.sort_by(f64::total_cmp);
             let (rmse, flip) =
                 errors_of_means(&image, size.width, size.height, &reference, &reference_rgb8);
-            points.push(super::convergence::Point {
+            points.push(Point {
                 name: MITSUBA,
                 passes: n,
                 samples_per_pixel: n as f64,
@@ -104,6 +122,7 @@ pub fn run(cfg: Config) -> Result<()> {
             });
         }
     }
+    points.extend(denoised.iter().cloned());
     write_csv(&cfg.out_dir.join("path_tracing.csv"), &points)?;
 
     let mut md = String::new();
@@ -138,6 +157,7 @@ pub fn run(cfg: Config) -> Result<()> {
             p.name, p.passes, p.seconds, p.flip, p.rmse
         )?;
     }
+    denoised_summary(&mut md, &points, &denoised)?;
     match &python {
         Some(_) => {
             writeln!(
@@ -158,6 +178,93 @@ pub fn run(cfg: Config) -> Result<()> {
         )?,
     }
     super::write_report(&cfg.out_dir, "path_tracing.md", &md)
+}
+
+/// What the denoised rows show: the samples and time at which a denoised image reaches
+/// the 1,024-sample image's error (or, without the `denoise` feature, how to get them).
+fn denoised_summary(md: &mut String, points: &[Point], denoised: &[Point]) -> Result<()> {
+    if !cfg!(feature = "denoise") {
+        writeln!(md, "\nDenoised rows: {}.", prism::render::DENOISE_NOT_BUILT)?;
+        return Ok(());
+    }
+    let Some(target) = points.iter().find(|p| p.name == PRISM && p.passes == 1024) else {
+        return Ok(());
+    };
+    for (metric, value) in [
+        ("mean FLIP", (|p: &Point| p.flip) as fn(&Point) -> f64),
+        ("RMSE", |p: &Point| p.rmse),
+    ] {
+        match denoised.iter().find(|p| value(p) <= value(target)) {
+            Some(p) => writeln!(
+                md,
+                "\nDenoised, {} samples per pixel reach the 1,024-sample image's {metric} \
+                 ({:.5}, in {:.2} s): {:.5} in {:.2} s, {:.0}% of its time.",
+                p.passes,
+                value(target),
+                target.seconds,
+                value(p),
+                p.seconds,
+                p.seconds / target.seconds * 100.0
+            )?,
+            None => writeln!(
+                md,
+                "\nNo denoised image here reaches the 1,024-sample image's {metric} ({:.5}).",
+                value(target)
+            )?,
+        }
+    }
+    Ok(())
+}
+
+/// prism's image at each of `settings` denoised by Open Image Denoise (`--denoise`): the
+/// median time of the passes, the guide images and the filter together, and the error.
+#[cfg(feature = "denoise")]
+fn denoised_points(
+    prepared: &Arc<PreparedScene>,
+    camera: prism::camera::Camera,
+    settings: impl Iterator<Item = RenderSettings>,
+    reference: &[Vec3],
+    reference_rgb8: &[u8],
+    runs: usize,
+) -> Result<Vec<Point>> {
+    let mut points = Vec::new();
+    for s in settings {
+        let mut times = Vec::new();
+        let mut image = Vec::new();
+        for _ in 0..runs {
+            let start = std::time::Instant::now();
+            let job = prism::render::render(prepared.clone(), camera, s, |_, _| {});
+            let guides = prism::render::guide_images(prepared, camera, &s, job.passes_done());
+            let film = prism::render::denoise(job.accumulator(), &guides, s.high_dynamic_range)?;
+            times.push(start.elapsed().as_secs_f64());
+            image = film.pixels.iter().map(|p| p.mean()).collect();
+        }
+        times.sort_by(f64::total_cmp);
+        let (rmse, flip) = errors_of_means(&image, s.width, s.height, reference, reference_rgb8);
+        let n = s.samples.unwrap_or(1);
+        points.push(Point {
+            name: DENOISED,
+            passes: n,
+            samples_per_pixel: n as f64,
+            seconds: times[times.len() / 2],
+            rmse,
+            flip,
+        });
+    }
+    Ok(points)
+}
+
+/// Without the `denoise` feature there is nothing to measure.
+#[cfg(not(feature = "denoise"))]
+fn denoised_points(
+    _: &Arc<PreparedScene>,
+    _: prism::camera::Camera,
+    _: impl Iterator<Item = RenderSettings>,
+    _: &[Vec3],
+    _: &[u8],
+    _: usize,
+) -> Result<Vec<Point>> {
+    Ok(Vec::new())
 }
 
 /// The Python that runs Mitsuba: PRISM_MITSUBA_PYTHON, else `python3`, if it imports it

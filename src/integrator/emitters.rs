@@ -1,11 +1,11 @@
 //! Objects that glow (a material with `emission`) as lights the path tracer samples: each
-//! such sphere, disc, triangle or mesh by area, one chosen per shading point in proportion to
-//! its power. Shapes that cannot be sampled by area here (boxes, cylinders, cones, tori,
-//! capsules, a shape under a shear or uneven scale, CSG solids, planes) are found by
-//! scattered rays alone, as before.
+//! such sphere, disc, triangle, box, cylinder or mesh by area, turned, moved and evenly
+//! scaled as the scene places it, one chosen per shading point in proportion to its power.
+//! Shapes that cannot be sampled by area here (cones, tori, capsules, a shape under a shear
+//! or uneven scale, CSG solids, planes) are found by scattered rays alone.
 
 use crate::accel::{CSG_MEMBERS_MATERIAL, Model, Surface};
-use crate::geometry::Shape;
+use crate::geometry::{Shape, Transform};
 use crate::numerics::orthonormal_basis;
 use crate::scene::PreparedScene;
 use glam::{Vec3, Vec3A};
@@ -31,12 +31,28 @@ enum EmitterShape {
         corners: Vec<[Vec3A; 3]>,
         areas: Vec<f32>,
     },
+    /// An axis-aligned box's six faces.
+    Cuboid {
+        min: Vec3A,
+        max: Vec3A,
+    },
+    /// An upright cylinder's side, and its two caps when it has them.
+    Cylinder {
+        base: Vec3A,
+        radius: f32,
+        height: f32,
+        caps: bool,
+    },
 }
 
 /// One glowing surface.
 #[derive(Clone, Debug)]
 struct Emitter {
     shape: EmitterShape,
+    /// Where an instance places its shape (turned, moved and evenly scaled); None for a
+    /// shape already in the scene's space.
+    placed: Option<Transform>,
+    /// The area in the scene's space.
     area: f32,
     radiance: Vec3A,
 }
@@ -80,10 +96,10 @@ impl Emitters {
             if radiance == Vec3A::ZERO {
                 continue;
             }
-            let Some(shape) = emitter_shape(&primitive.surface) else {
+            let Some((shape, placed)) = emitter_shape(&primitive.surface) else {
                 continue;
             };
-            let area = shape.area();
+            let area = shape.area() * placed.as_ref().map_or(1.0, |t| even_scale(t).powi(2));
             if !(area.is_finite() && area > 0.0) {
                 continue;
             }
@@ -93,6 +109,7 @@ impl Emitters {
             emitters.powers.push(before + power);
             emitters.emitters.push(Emitter {
                 shape,
+                placed,
                 area,
                 radiance,
             });
@@ -116,7 +133,13 @@ impl Emitters {
         let before = if i > 0 { self.powers[i - 1] } else { 0.0 };
         let chosen = (self.powers[i] - before) / total;
         let e = &self.emitters[i];
-        let (point, normal) = e.shape.sample(v);
+        let (point, normal) = match &e.placed {
+            None => e.shape.sample(v),
+            Some(t) => {
+                let (p, n) = e.shape.sample(v);
+                (t.point_to_scene(p, Vec3A::ZERO).0, t.normal_to_scene(n))
+            }
+        };
         Some(EmitterSample {
             point,
             normal,
@@ -143,10 +166,11 @@ impl Emitters {
     }
 }
 
-/// The shape of a glowing surface that can be sampled by area, in the scene's space.
-fn emitter_shape(surface: &Surface) -> Option<EmitterShape> {
+/// The shape of a glowing surface that can be sampled by area, and where an instance places
+/// it.
+fn emitter_shape(surface: &Surface) -> Option<(EmitterShape, Option<Transform>)> {
     match surface {
-        Surface::Shape(shape) => shape_emitter(shape),
+        Surface::Shape(shape) => Some((shape_emitter(shape)?, None)),
         Surface::Instance(instance) => match &**instance.model() {
             Model::Mesh { mesh, .. } => {
                 let t = instance.transform();
@@ -156,13 +180,32 @@ fn emitter_shape(surface: &Surface) -> Option<EmitterShape> {
                     .iter()
                     .map(|tri| tri.map(|i| t.point_to_scene(positions[i as usize], Vec3A::ZERO).0))
                     .collect();
-                Some(EmitterShape::triangles(corners))
+                Some((EmitterShape::triangles(corners), None))
             }
-            // A shape under a shear or an uneven scale: its area is not simply sampled.
-            Model::Shape(_) => None,
+            // Under a shear or an uneven scale a shape's area is not simply sampled.
+            Model::Shape(shape) => {
+                let t = instance.transform();
+                (even_scale(t) > 0.0).then_some(())?;
+                Some((shape_emitter(shape)?, Some(*t)))
+            }
         },
         Surface::Csg(_) => None,
     }
+}
+
+/// The factor by which `t` scales every length, when it turns, moves and scales evenly
+/// (its linear part's columns at right angles and of one length); 0 otherwise.
+fn even_scale(t: &Transform) -> f32 {
+    let m = t.to_scene().matrix3;
+    let (x, y, z) = (m.x_axis, m.y_axis, m.z_axis);
+    let length = x.length();
+    let close = |a: f32, b: f32| (a - b).abs() <= 1e-4 * length * length;
+    let even = close(x.dot(y), 0.0)
+        && close(y.dot(z), 0.0)
+        && close(z.dot(x), 0.0)
+        && close(y.length_squared(), length * length)
+        && close(z.length_squared(), length * length);
+    if even { length } else { 0.0 }
 }
 
 fn shape_emitter(shape: &Shape) -> Option<EmitterShape> {
@@ -177,7 +220,17 @@ fn shape_emitter(shape: &Shape) -> Option<EmitterShape> {
             radius: d.radius,
         }),
         Shape::Triangle(t) => Some(EmitterShape::triangles(vec![t.p])),
-        _ => None,
+        Shape::Cuboid(b) => Some(EmitterShape::Cuboid {
+            min: b.min,
+            max: b.max,
+        }),
+        Shape::Cylinder(c) => Some(EmitterShape::Cylinder {
+            base: c.base.into(),
+            radius: c.radius,
+            height: c.height,
+            caps: c.caps,
+        }),
+        Shape::Cone(_) | Shape::Torus(_) | Shape::Capsule(_) => None,
     }
 }
 
@@ -199,6 +252,16 @@ impl EmitterShape {
             EmitterShape::Sphere { radius, .. } => 2.0 * TAU * radius * radius,
             EmitterShape::Disc { radius, .. } => PI * radius * radius,
             EmitterShape::Triangles { areas, .. } => areas.last().copied().unwrap_or(0.0),
+            EmitterShape::Cuboid { min, max } => {
+                let d = max - min;
+                2.0 * (d.x * d.y + d.y * d.z + d.z * d.x)
+            }
+            EmitterShape::Cylinder {
+                radius,
+                height,
+                caps,
+                ..
+            } => TAU * radius * height + if *caps { TAU * radius * radius } else { 0.0 },
         }
     }
 
@@ -241,6 +304,53 @@ impl EmitterShape {
                 let p = a * b0 + b * b1 + c * (1.0 - b0 - b1);
                 let n = (b - a).cross(c - a).normalize_or_zero();
                 (p, n)
+            }
+            EmitterShape::Cuboid { min, max } => {
+                // The first number picks a face by area (pairs of faces along x, y, z),
+                // then is stretched back over [0, 1) to place the point on it.
+                let d = max - min;
+                let faces = [d.y * d.z, d.z * d.x, d.x * d.y];
+                let mut x = u.0 * (faces[0] + faces[1] + faces[2]);
+                let mut axis = 0;
+                while axis < 2 && x >= faces[axis] {
+                    x -= faces[axis];
+                    axis += 1;
+                }
+                // Within the pair, the lower face for the first half.
+                let x = (x / faces[axis]).clamp(0.0, 1.0);
+                let upper = x >= 0.5;
+                let along = if upper { 2.0 * x - 1.0 } else { 2.0 * x };
+                let (a, b) = ((axis + 1) % 3, (axis + 2) % 3);
+                let mut p = min;
+                p[axis] = if upper { max[axis] } else { min[axis] };
+                p[a] = min[a] + d[a] * along.min(1.0);
+                p[b] = min[b] + d[b] * u.1;
+                let mut n = Vec3A::ZERO;
+                n[axis] = if upper { 1.0 } else { -1.0 };
+                (p, n)
+            }
+            EmitterShape::Cylinder {
+                base,
+                radius,
+                height,
+                caps,
+            } => {
+                let side = height;
+                let cap = if caps { radius / 2.0 } else { 0.0 };
+                // Areas in proportion: side 2πrh, each cap πr².
+                let x = u.0 * (side + 2.0 * cap);
+                if x < side {
+                    let (s, c) = (TAU * u.1).sin_cos();
+                    let n = Vec3A::new(c, 0.0, s);
+                    (base + n * radius + Vec3A::Y * x, n)
+                } else {
+                    let top = x >= side + cap;
+                    let along = ((x - side - if top { cap } else { 0.0 }) / cap).clamp(0.0, 1.0);
+                    let (dx, dz) = crate::sampler::concentric_disc((along, u.1));
+                    let y = if top { height } else { 0.0 };
+                    let n = if top { Vec3A::Y } else { -Vec3A::Y };
+                    (base + Vec3A::new(dx * radius, y, dz * radius), n)
+                }
             }
         }
     }
@@ -301,5 +411,76 @@ mod tests {
             "{}",
             means[2] / count
         );
+    }
+
+    /// A box's and a capped cylinder's points lie on them, spread by area: centred, and
+    /// on each part in proportion to its area.
+    #[test]
+    fn boxes_and_cylinders_are_sampled_by_area() {
+        let cuboid = EmitterShape::Cuboid {
+            min: Vec3A::ZERO,
+            max: Vec3A::new(1.0, 2.0, 3.0),
+        };
+        assert!((cuboid.area() - 22.0).abs() < 1e-5);
+        let cylinder = EmitterShape::Cylinder {
+            base: Vec3A::new(1.0, 0.0, 0.0),
+            radius: 1.0,
+            height: 2.0,
+            caps: true,
+        };
+        assert!((cylinder.area() - 3.0 * TAU).abs() < 1e-4);
+        let n = 128;
+        let (mut box_mean, mut cylinder_mean) = (Vec3A::ZERO, Vec3A::ZERO);
+        let (mut on_x_faces, mut on_caps) = (0, 0);
+        for i in 0..n {
+            for j in 0..n {
+                let u = ((i as f32 + 0.5) / n as f32, (j as f32 + 0.5) / n as f32);
+                let (p, normal) = cuboid.sample(u);
+                let on = |a: usize| p[a].abs() < 1e-6 || (p[a] - [1.0, 2.0, 3.0][a]).abs() < 1e-6;
+                assert!((0..3).any(on), "{p} is on no face");
+                assert!(p.cmpge(Vec3A::ZERO).all() && p.cmple(Vec3A::new(1.0, 2.0, 3.0)).all());
+                assert_eq!(normal.abs().max_element(), 1.0);
+                on_x_faces += (normal.x != 0.0) as u32;
+                box_mean += p;
+                let (p, normal) = cylinder.sample(u);
+                let q = p - Vec3A::new(1.0, 0.0, 0.0);
+                let across = (q.x * q.x + q.z * q.z).sqrt();
+                if normal.y == 0.0 {
+                    assert!((across - 1.0).abs() < 1e-5 && (0.0..=2.0).contains(&q.y));
+                    assert!((normal - Vec3A::new(q.x, 0.0, q.z)).length() < 1e-5);
+                } else {
+                    assert!(across <= 1.0 + 1e-5 && (q.y == 0.0 || q.y == 2.0));
+                    assert_eq!(normal.y, if q.y == 0.0 { -1.0 } else { 1.0 });
+                    on_caps += 1;
+                }
+                cylinder_mean += p;
+            }
+        }
+        let count = (n * n) as f32;
+        // The first number places the face and the point on it: a coarse grid each.
+        assert!((box_mean / count - Vec3A::new(0.5, 1.0, 1.5)).length() < 2e-2);
+        assert!((on_x_faces as f32 / count - 6.0 / 11.0).abs() < 1e-2);
+        assert!((cylinder_mean / count - Vec3A::new(1.0, 1.0, 0.0)).length() < 2e-2);
+        assert!((on_caps as f32 / count - 1.0 / 3.0).abs() < 1e-2);
+    }
+
+    /// A turn, a move and an even scale are sampled through; a shear or an uneven scale
+    /// is not.
+    #[test]
+    fn only_even_scales_are_sampled_through() {
+        let turned = Transform::from_scale_rotation_translation(
+            Vec3::splat(2.0),
+            Vec3::new(10.0, 30.0, -20.0),
+            Vec3::new(1.0, 2.0, 3.0),
+        )
+        .unwrap();
+        assert!((even_scale(&turned) - 2.0).abs() < 1e-5);
+        let stretched = Transform::from_scale_rotation_translation(
+            Vec3::new(1.0, 2.0, 1.0),
+            Vec3::ZERO,
+            Vec3::ZERO,
+        )
+        .unwrap();
+        assert_eq!(even_scale(&stretched), 0.0);
     }
 }

@@ -200,6 +200,31 @@ def scene(name):
             "bsdf": BLACK,
             "emitter": {"type": "area", "radiance": {"type": "rgb", "value": [2, 4, 6]}},
         }
+        # prism: a glowing box turned 30° about y (an instance of a box, sampled by area
+        # through its transform) and a glowing capped cylinder (its caps here two discs).
+        red = {"type": "area", "radiance": {"type": "rgb", "value": [5, 1.5, 1]}}
+        green = {"type": "area", "radiance": {"type": "rgb", "value": [1, 4, 1.5]}}
+        s["box"] = {
+            "type": "cube",
+            "to_world": T().translate([0.35, 0.15, 0.4]).rotate([0, 1, 0], 30).scale(0.15),
+            "bsdf": BLACK,
+            "emitter": red,
+        }
+        s["tube"] = {
+            "type": "cylinder",
+            "p0": [-0.45, 0.7, -0.4],
+            "p1": [-0.45, 1.1, -0.4],
+            "radius": 0.1,
+            "bsdf": BLACK,
+            "emitter": green,
+        }
+        for key, y, angle in (("top", 1.1, -90), ("bottom", 0.7, 90)):
+            s[key] = {
+                "type": "disk",
+                "to_world": T().translate([-0.45, y, -0.4]).rotate([1, 0, 0], angle).scale(0.1),
+                "bsdf": BLACK,
+                "emitter": green,
+            }
     else:
         raise SystemExit(f"no scene {name!r}")
     return s
