@@ -344,16 +344,18 @@ fn signals_remove_the_temporary_file_and_exit_as_shells_expect() {
             .args(["render", scene.to_str().unwrap(), "-o"])
             .arg(d.path("out.png"))
             .args([
-                "--quiet", "--width", "3000", "--height", "2000", "--aa", "8",
+                "--quiet", "--width", "3000", "--height", "2000", "--aa", "2",
             ])
             .stderr(Stdio::piped())
             .spawn()
             .unwrap();
-        // Wait until the output is claimed (its temporary file exists): the render is on.
+        // Wait until the image is being written: its temporary file exists only then (a
+        // large image, so that the writing lasts long enough to be caught). The render
+        // before it must finish first, however slow or loaded the machine.
         let start = Instant::now();
         while d.others(&["scene.toml"]).is_empty() {
             assert!(
-                start.elapsed() < Duration::from_secs(30),
+                start.elapsed() < Duration::from_secs(300),
                 "no temporary file"
             );
             std::thread::sleep(Duration::from_millis(20));
