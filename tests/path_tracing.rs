@@ -203,6 +203,41 @@ fn a_glowing_room_returns_the_sum_of_its_bounces() {
     assert!((expected - fewer) > 0.03 * expected);
 }
 
+/// Inside any closed shape that glows with radiance E and reflects a fraction a, as inside
+/// the sphere above, every pixel returns E·(1 + a + … + a^(max_depth+1)). There the shape is
+/// the only light its samples can reach, so a wrong area or a point drawn other than
+/// uniformly by area would show as a wrong mean. Each shape is turned, moved and evenly
+/// scaled, so the sampling goes through its placement; the camera sits inside at its own
+/// origin.
+#[test]
+fn inside_any_glowing_shape_the_sum_of_its_bounces_returns() {
+    let (e, a, depth) = (0.25f32, 0.6f32, 4u32);
+    let shapes = [
+        "[[boxes]]\nmin = [-1, -0.5, -0.8]\nmax = [1, 0.7, 0.6]",
+        "[[cylinders]]\nbase = [0, -1, 0]\nradius = 0.8\nheight = 2",
+        "[[cones]]\nbase = [0, -0.5, 0]\nradius = 1.2\ntop_radius = 0.4\nheight = 1.5",
+        "[[cones]]\nbase = [0, -0.5, 0]\nradius = 1.5\nheight = 2",
+        "[[tori]]\ncenter = [-1, 0, 0]\nmajor_radius = 1\nminor_radius = 0.5",
+        "[[capsules]]\nbase = [0, -0.6, 0]\nradius = 0.7\nheight = 1.2",
+    ];
+    let expected: f32 = (0..=depth + 1).map(|k| e * a.powi(k as i32)).sum();
+    for shape in shapes {
+        let scene = load(&format!(
+            "[camera]\neye = [1, 2, 3]\nlook_at = [1.3, 1.8, 2]\nfov = 90\n\
+             [render]\nambient = [0, 0, 0]\nmax_depth = {depth}\n\
+             [materials.m]\ncolor = [{a}, {a}, {a}]\nspecular = 0\nemission = [{e}, {e}, {e}]\n\
+             {shape}\nmaterial = \"m\"\nrotate = [20, 35, -10]\nscale = 1.5\ntranslate = [1, 2, 3]\n"
+        ));
+        let mean = mean_of(&film(&scene, IntegratorKind::Path, 24, 24, 64));
+        for c in mean.to_array() {
+            assert!(
+                (c - expected).abs() < 0.01 * expected,
+                "{shape}: {mean} against {expected}"
+            );
+        }
+    }
+}
+
 /// Under a table lit from above, the floor gets only bounced light: black to Whitted
 /// without ambient light, lit to the path tracer, and lit more by a white wall beside it
 /// than by a black one.

@@ -4,6 +4,7 @@
 //! point, and reads materials and lights from the appearance.
 
 mod coincident;
+mod emitter_shape;
 mod emitters;
 mod first_surface;
 mod guide;

@@ -128,7 +128,9 @@ impl<'a> Integrator<'a> {
                     transmitted,
                     conductor: material.conductor.map(Vec3A::from),
                     roughness: material.roughness,
-                    interface: material.bends().then(|| Interface {
+                    // Only a rough interface needs its ratio (smooth glass splits in
+                    // `split`), so smooth glass skips the lookup.
+                    interface: (material.bends() && material.roughness > 0.0).then(|| Interface {
                         eta: self.eta_ratio(&at),
                         fresnel: material.fresnel,
                     }),
