@@ -133,7 +133,7 @@ pub fn run(cfg: Config) -> Result<()> {
         "The room tests/mitsuba.rs compares with Mitsuba (assets/mitsuba/room.toml lit by \
          assets/mitsuba/rectangle_light.toml; Mitsuba's copy in tests/mitsuba/render.py), \
          {}×{}, `max_depth` {MAX_DEPTH} (Mitsuba's {}), both on every core, against prism's \
-         own {}-sample image. Made by `cargo run --release -- bench path-tracing{}`; medians \
+         own {}-sample image. Made by `{}cargo run --release{} -- bench path-tracing{}`; medians \
          of {} runs on a shared 2-core machine. Mitsuba's time is its `mi.render` call alone \
          (the scene loaded before); prism's is its passes. At equal samples Mitsuba's image \
          is the noisier: it samples one light per bounce (here one of the two back-to-back \
@@ -143,6 +143,16 @@ pub fn run(cfg: Config) -> Result<()> {
         size.height,
         MAX_DEPTH + 2,
         size.reference_samples.unwrap_or(16),
+        if cfg!(feature = "denoise") {
+            "OIDN_DIR=… "
+        } else {
+            ""
+        },
+        if cfg!(feature = "denoise") {
+            " --features denoise"
+        } else {
+            ""
+        },
         super::flags_of_report(cfg.quick),
         cfg.runs
     )?;
