@@ -4,18 +4,20 @@
 //! per pixel where Mitsuba is installed.
 
 use super::convergence::{
-    Measure, Point, Size, Timed, errors_of_means, measure, reference, to_rgb8, write_csv,
+    Measure, NEVER, Point, Size, Timed, errors_of_means, measure, reference, to_rgb8, write_csv,
 };
 use anyhow::{Context, Result, bail};
 use glam::Vec3;
+use prism::camera::Camera;
 use prism::integrator::IntegratorKind;
-use prism::render::RenderSettings;
+use prism::render::{PassOutcome, ProgressiveRender, RenderSettings};
 use prism::scene::PreparedScene;
 use prism::scene_file::parse_scene;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::Arc;
+use std::time::Instant;
 
 pub struct Config {
     pub quick: bool,
@@ -98,28 +100,40 @@ pub fn run(cfg: Config) -> Result<()> {
         cfg.runs,
     )?;
     let python = mitsuba_python();
+    // Mitsuba's time over prism's at each count: each Mitsuba run paired with a prism
+    // render of the same samples just before it, so that a slow spell of the shared machine
+    // falls on both; the median of the pairs' ratios.
+    let mut ratios = Vec::new();
     if let Some(python) = &python {
         let dir = cfg.out_dir.join("mitsuba");
         std::fs::create_dir_all(&dir)?;
         for &n in counts {
             let mut times = Vec::new();
+            let mut pairs = Vec::new();
             let mut image = Vec::new();
-            for _ in 0..cfg.runs {
+            for run in 0..cfg.runs {
+                eprintln!(
+                    "Mitsuba and prism at {n} samples, run {} of {}",
+                    run + 1,
+                    cfg.runs
+                );
+                let ours = prism_seconds(&prepared, scene.camera, settings_of(n));
                 let (seconds, means) = mitsuba(python, &dir, n, &size)?;
                 times.push(seconds);
+                pairs.push(seconds / ours);
                 image = means;
             }
-            times.sort_by(f64::total_cmp);
             let (rmse, flip) =
                 errors_of_means(&image, size.width, size.height, &reference, &reference_rgb8);
             points.push(Point {
                 name: MITSUBA,
                 passes: n,
                 samples_per_pixel: n as f64,
-                seconds: times[times.len() / 2],
+                seconds: median(times),
                 rmse,
                 flip,
             });
+            ratios.push((n, median(pairs)));
         }
     }
     points.extend(denoised.iter().cloned());
@@ -172,13 +186,13 @@ pub fn run(cfg: Config) -> Result<()> {
         Some(_) => {
             writeln!(
                 md,
-                "\n| samples per pixel | Mitsuba's time over prism's |\n|---|---|"
+                "\nMitsuba's time over prism's at equal samples: each of Mitsuba's runs paired \
+                 with a prism render just before it, the median of the {} pairs' ratios.\n\n\
+                 | samples per pixel | Mitsuba's time over prism's |\n|---|---|",
+                cfg.runs
             )?;
-            for &n in counts {
-                let at = |name| points.iter().find(|p| p.name == name && p.passes == n);
-                if let (Some(ours), Some(theirs)) = (at(PRISM), at(MITSUBA)) {
-                    writeln!(md, "| {n} | {:.2}× |", theirs.seconds / ours.seconds)?;
-                }
+            for (n, ratio) in &ratios {
+                writeln!(md, "| {n} | {ratio:.2}× |")?;
             }
         }
         None => writeln!(
@@ -188,6 +202,20 @@ pub fn run(cfg: Config) -> Result<()> {
         )?,
     }
     super::write_report(&cfg.out_dir, "path_tracing.md", &md)
+}
+
+/// The median of `values`.
+fn median(mut values: Vec<f64>) -> f64 {
+    values.sort_by(f64::total_cmp);
+    values[values.len() / 2]
+}
+
+/// The seconds prism's passes take to render `settings` (the scene prepared before).
+fn prism_seconds(prepared: &Arc<PreparedScene>, camera: Camera, settings: RenderSettings) -> f64 {
+    let mut job = ProgressiveRender::new(prepared.clone(), camera, settings);
+    let start = Instant::now();
+    while let PassOutcome::Finished(_) = job.step(&NEVER) {}
+    start.elapsed().as_secs_f64()
 }
 
 /// What the denoised rows show: the samples and time at which a denoised image reaches
