@@ -7,7 +7,7 @@ use crate::numerics::orthonormal_basis;
 use glam::{Vec3, Vec3A};
 use std::f32::consts::{PI, TAU};
 
-/// A glowing surface's shape in the scene's space.
+/// A glowing surface's shape, in the scene's space or an instance's own.
 #[derive(Clone, Debug)]
 pub(super) enum EmitterShape {
     Sphere {
