@@ -277,14 +277,13 @@ fn denoised_points(
             times.push(start.elapsed().as_secs_f64());
             image = film.pixels.iter().map(|p| p.mean()).collect();
         }
-        times.sort_by(f64::total_cmp);
         let (rmse, flip) = errors_of_means(&image, s.width, s.height, reference, reference_rgb8);
         let n = s.samples.unwrap_or(1);
         points.push(Point {
             name: DENOISED,
             passes: n,
             samples_per_pixel: n as f64,
-            seconds: times[times.len() / 2],
+            seconds: median(times),
             rmse,
             flip,
         });
