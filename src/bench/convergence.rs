@@ -2,6 +2,7 @@
 //! the seed scene, and the headline speed figures (docs/benchmarks/).
 
 use super::scenes::sphere_field;
+use super::timing::median_of;
 use anyhow::{Context, Result};
 use glam::Vec3;
 use plotters::prelude::*;
@@ -185,9 +186,7 @@ pub(super) fn measure(
             if !wanted {
                 continue;
             }
-            let mut times: Vec<f64> = runs.iter().map(|r| r[pass as usize - 1]).collect();
-            times.sort_by(f64::total_cmp);
-            let seconds = times[times.len() / 2];
+            let seconds = median_of(runs.iter().map(|r| r[pass as usize - 1]).collect());
             let (rmse, flip) = errors(job.accumulator(), reference, &reference_rgb8);
             eprintln!(
                 "{:>26}: pass {pass:>3}, {seconds:>7.3} s, RMSE {rmse:.5}, FLIP {flip:.5}",
@@ -483,17 +482,17 @@ fn pass_seconds_with(
     settings: RenderSettings,
     runs: usize,
 ) -> f64 {
-    let mut times: Vec<f64> = (0..runs)
-        .map(|_| {
-            let mut job = ProgressiveRender::new(scene.clone(), camera, settings);
-            match job.step(&NEVER) {
-                PassOutcome::Finished(s) => s.seconds,
-                _ => unreachable!("a first pass always finishes"),
-            }
-        })
-        .collect();
-    times.sort_by(f64::total_cmp);
-    times[times.len() / 2]
+    median_of(
+        (0..runs)
+            .map(|_| {
+                let mut job = ProgressiveRender::new(scene.clone(), camera, settings);
+                match job.step(&NEVER) {
+                    PassOutcome::Finished(s) => s.seconds,
+                    _ => unreachable!("a first pass always finishes"),
+                }
+            })
+            .collect(),
+    )
 }
 
 /// Where the reference images are cached between runs: the user's cache folder
@@ -655,13 +654,7 @@ fn shortcuts_section(
             times[row].push(pass_seconds_with(scene_variant, scene.camera, *settings, 1));
         }
     }
-    let medians: Vec<f64> = times
-        .iter_mut()
-        .map(|t| {
-            t.sort_by(f64::total_cmp);
-            t[t.len() / 2]
-        })
-        .collect();
+    let medians: Vec<f64> = times.into_iter().map(median_of).collect();
     for ((what, _, _), t) in rows.iter().zip(&medians) {
         writeln!(
             md,

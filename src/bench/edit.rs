@@ -2,6 +2,7 @@
 //! the scene again (what every edit cost before geometry and appearance were kept apart).
 
 use super::scenes::sphere_field;
+use super::timing::median;
 use anyhow::{Context, Result};
 use prism::render::{ProgressiveRender, RenderSettings};
 use prism::scene::PreparedScene;
@@ -9,7 +10,6 @@ use std::fmt::Write as _;
 use std::hint::black_box;
 use std::path::PathBuf;
 use std::sync::Arc;
-use std::time::Instant;
 
 /// What to measure and where the table goes.
 pub struct Config {
@@ -19,25 +19,6 @@ pub struct Config {
     pub runs: usize,
     /// The folder `edit.md` is written to.
     pub out_dir: PathBuf,
-}
-
-/// Seconds of each of `runs` calls of `f` (at least one), fastest first.
-pub(super) fn sorted_times(runs: usize, mut f: impl FnMut()) -> Vec<f64> {
-    let mut times: Vec<f64> = (0..runs.max(1))
-        .map(|_| {
-            let start = Instant::now();
-            f();
-            start.elapsed().as_secs_f64()
-        })
-        .collect();
-    times.sort_by(f64::total_cmp);
-    times
-}
-
-/// Median seconds of `runs` calls of `f`.
-pub(super) fn median(runs: usize, f: impl FnMut()) -> f64 {
-    let times = sorted_times(runs, f);
-    times[times.len() / 2]
 }
 
 /// Times an edit that makes one sphere of a `sphere_field` glass, as a viewer slider does,

@@ -9,6 +9,7 @@ mod scale;
 mod scenes;
 mod soft_shadows;
 mod speed;
+mod timing;
 
 use anyhow::Result;
 

@@ -4,7 +4,7 @@
 //! traced as one solid through its hierarchies), each the same image; and a
 //! million-triangle glTF file read and built (docs/benchmarks/modelling.md).
 
-use super::edit::median;
+use super::timing::median;
 use anyhow::{Context, Result};
 use prism::render::{RenderSettings, render};
 use prism::scene::{PreparedScene, Scene};

@@ -1,5 +1,6 @@
 //! `prism bench numerics`: the measured tables of docs/numerics.md.
 
+use super::timing::median_of;
 use anyhow::Result;
 use glam::{DVec3, Vec3};
 use prism::geometry::{Ray, Sphere};
@@ -130,11 +131,10 @@ pub fn cost_table(seed: &Scene, runs: usize) -> String {
         ("fixed ε = 1e-3", SelfIntersection::FixedEpsilon(1e-3)),
         ("error-bound offset", SelfIntersection::ErrorBound),
     ] {
-        let mut times: Vec<f64> = (0..runs)
+        let times = (0..runs.max(1))
             .map(|_| render(seed, 800, 600, policy).1)
             .collect();
-        times.sort_by(f64::total_cmp);
-        writeln!(out, "| {name} | {:.1} ms |", times[runs / 2] * 1e3).unwrap();
+        writeln!(out, "| {name} | {:.1} ms |", median_of(times) * 1e3).unwrap();
     }
     out
 }

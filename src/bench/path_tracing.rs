@@ -6,6 +6,7 @@
 use super::convergence::{
     Measure, NEVER, Point, Size, Timed, errors_of_means, measure, reference, to_rgb8, write_csv,
 };
+use super::timing::median_of;
 use anyhow::{Context, Result, bail};
 use glam::Vec3;
 use prism::camera::Camera;
@@ -129,11 +130,11 @@ pub fn run(cfg: Config) -> Result<()> {
                 name: MITSUBA,
                 passes: n,
                 samples_per_pixel: n as f64,
-                seconds: median(times),
+                seconds: median_of(times),
                 rmse,
                 flip,
             });
-            ratios.push((n, median(pairs)));
+            ratios.push((n, median_of(pairs)));
         }
     }
     points.extend(denoised.iter().cloned());
@@ -202,12 +203,6 @@ pub fn run(cfg: Config) -> Result<()> {
         )?,
     }
     super::write_report(&cfg.out_dir, "path_tracing.md", &md)
-}
-
-/// The median of `values`.
-fn median(mut values: Vec<f64>) -> f64 {
-    values.sort_by(f64::total_cmp);
-    values[values.len() / 2]
 }
 
 /// The seconds prism's passes take to render `settings` (the scene prepared before).
@@ -283,7 +278,7 @@ fn denoised_points(
             name: DENOISED,
             passes: n,
             samples_per_pixel: n as f64,
-            seconds: median(times),
+            seconds: median_of(times),
             rmse,
             flip,
         });

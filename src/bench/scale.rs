@@ -3,7 +3,7 @@
 //! the figures are the mesh's load and build time and bytes per triangle, one 800×600 pass
 //! over each, and the memory of 100 instances against one (docs/benchmarks/scale.md).
 
-use super::edit::median;
+use super::timing::median;
 use anyhow::{Context, Result};
 use prism::accel::{Model, Surface};
 use prism::geometry::Mesh;

@@ -6,8 +6,8 @@
 //! million-triangle mesh (docs/benchmarks/speed.md). A reference that is not installed is
 //! named in its row, and the rest is measured.
 
-use super::edit::median;
 use super::scale::to_obj;
+use super::timing::{median, median_of, sorted};
 use anyhow::{Context, Result, bail};
 use prism::accel::Model;
 use prism::render::{ProgressiveRender, RenderSettings};
@@ -75,22 +75,21 @@ fn mesh_pass(scene: &Scene, threads: usize, runs: usize) -> Result<(f64, f64, us
     let mut settings = RenderSettings::new(scene.render.width, scene.render.height, 1);
     settings.layout = SampleLayout::Grid;
     let mut times = Vec::with_capacity(runs);
-    let mut lit = 0;
+    let mut last = None;
     pool.install(|| {
         for _ in 0..runs.max(1) {
             let mut job = ProgressiveRender::new(prepared.clone(), scene.camera, settings);
             let start = Instant::now();
             black_box(job.step(&|| false));
             times.push(start.elapsed().as_secs_f64());
-            lit = job
-                .accumulator()
-                .to_rgb8()
-                .pixels()
-                .filter(|p| p.0[0] > 0)
-                .count();
+            last = Some(job);
         }
     });
-    times.sort_by(f64::total_cmp);
+    let lit = last.map_or(0, |job| {
+        let image = job.accumulator().to_rgb8();
+        image.pixels().filter(|p| p.0[0] > 0).count()
+    });
+    let times = sorted(times);
     Ok((times[0], times[times.len() / 2], lit))
 }
 
@@ -229,13 +228,9 @@ fn seed_rows(cfg: &Config, dir: &Path, rows: &mut Vec<Row>) -> Result<()> {
             pov_times.push(process_seconds(&mut povray)?);
         }
     }
-    let med = |mut v: Vec<f64>| {
-        v.sort_by(f64::total_cmp);
-        v[v.len() / 2]
-    };
-    let prism_s = med(times);
+    let prism_s = median_of(times);
     let (reference, ratio) = if pov {
-        let pov_s = med(pov_times);
+        let pov_s = median_of(pov_times);
         (
             format!("POV-Ray 3.7: {pov_s:.3} s"),
             format!("{:.2}× faster", pov_s / prism_s),
