@@ -678,6 +678,75 @@ fn a_signal_stops_the_render_within_a_pass() {
     }
 }
 
+/// `--threads N` bounds the whole process, reading the mesh and building its hierarchy
+/// as well as tracing: a farm that packs N-thread jobs onto a node gets no more threads
+/// than it asked for. Threads once started stay until the process ends, so sampling the
+/// process's thread count as it runs sees every one.
+#[test]
+fn threads_bound_loading_and_building_too() {
+    let d = Dir::new();
+    // A grid of 2 × 200² triangles: enough text that it is read in parallel pieces.
+    let n = 200;
+    let mut obj = String::new();
+    for j in 0..=n {
+        for i in 0..=n {
+            obj += &format!("v {} {} 0\n", i as f32 / n as f32, j as f32 / n as f32);
+        }
+    }
+    for j in 0..n {
+        for i in 0..n {
+            let a = j * (n + 1) + i + 1;
+            obj += &format!(
+                "f {a} {} {}\nf {a} {} {}\n",
+                a + 1,
+                a + n + 2,
+                a + n + 2,
+                a + n + 1
+            );
+        }
+    }
+    d.write("grid.obj", &obj);
+    let scene = d.write(
+        "grid.toml",
+        "[camera]\neye = [0.5, 0.5, 2]\ndirection = [0, 0, -1]\nfov = 50\n\n\
+         [[lights]]\nposition = [0, 0, 5]\n\n\
+         [[meshes]]\npath = \"grid.obj\"\n",
+    );
+    let most_threads = |threads: &str| {
+        let out = d.s(&format!("grid-{threads}.png"));
+        let mut child = Command::new(env!("CARGO_BIN_EXE_prism"))
+            .args([
+                "render",
+                scene.to_str().unwrap(),
+                "--width",
+                "64",
+                "--height",
+                "48",
+            ])
+            .args(["--quiet", "--threads", threads, "-o", &out])
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        let tasks = format!("/proc/{}/task", child.id());
+        let mut most = 0;
+        while child.try_wait().unwrap().is_none() {
+            most = most.max(std::fs::read_dir(&tasks).map_or(0, |t| t.count()));
+            std::thread::sleep(Duration::from_millis(1));
+        }
+        let result = child.wait_with_output().unwrap();
+        assert!(result.status.success(), "{}", stderr(&result));
+        most
+    };
+    // The main thread, the one that watches for signals, and the workers.
+    for (threads, expected) in [("1", 3), ("2", 4)] {
+        let most = most_threads(threads);
+        assert!(
+            (1..=expected).contains(&most),
+            "--threads {threads}: the process ran {most} threads, at most {expected} expected"
+        );
+    }
+}
+
 /// A black 8-bit PNG of `side`², placed as `placement` says.
 fn placed_png(path: &Path, side: u32, placement: &str) {
     let file = std::io::BufWriter::new(std::fs::File::create(path).unwrap());

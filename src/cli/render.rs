@@ -30,6 +30,14 @@ struct Plan {
 
 pub fn run(args: RenderArgs) -> Result<()> {
     let start = Instant::now();
+    let pool = prism::render::thread_pool(args.threads.map(usize::from))
+        .context("cannot start the worker threads")?;
+    // Everything runs on the pool, reading meshes and building hierarchies too: `--threads`
+    // bounds the whole process, as a farm that packs several jobs on one node expects.
+    pool.install(|| render_frames(&args, &pool, start))
+}
+
+fn render_frames(args: &RenderArgs, pool: &rayon::ThreadPool, start: Instant) -> Result<()> {
     let source = match &args.scene {
         Some(path) => SceneFrames::load(path)?,
         None => SceneFrames::fixed(prism::seed::scene()?),
@@ -37,7 +45,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
     for note in source.unread() {
         eprintln!("prism: warning: not read: {note}");
     }
-    let frames = FrameChoice::from_args(&args)?.frames(source.animation())?;
+    let frames = FrameChoice::from_args(args)?.frames(source.animation())?;
     let out = OutputTemplate::parse("--out", &args.out)?;
     let stats_out = match &args.stats_json {
         Some(text) => Some(OutputTemplate::parse("--stats-json", text)?),
@@ -49,15 +57,13 @@ pub fn run(args: RenderArgs) -> Result<()> {
         t.require_frame("--stats-json", frames.len())?;
         t.require_tile("--stats-json", args.tile.is_some())?;
     }
-    let pool = prism::render::thread_pool(args.threads.map(usize::from))
-        .context("cannot start the worker threads")?;
     // The tile's index names the files; its rows wait for the frame's size.
     let tile = match &args.tile {
         Some(text) => Some(PixelRect::parse_tile(text)?.0),
         None => None,
     };
     check_outputs(
-        &args,
+        args,
         source.files(),
         &frames,
         &out,
@@ -79,14 +85,14 @@ pub fn run(args: RenderArgs) -> Result<()> {
         let scene = source.frame(frame)?;
         let load = load_seconds.take().unwrap_or(0.0) + frame_start.elapsed().as_secs_f64();
         // Per frame: an animation may key the `[render]` table (its exposure, say).
-        let plan = &make_plan(&args, &scene)?;
+        let plan = &make_plan(args, &scene)?;
         let stats_path = stats_out.as_ref().map(|t| t.path(frame, tile));
         let label = source.animation().map(|_| frame);
         render_frame(
-            &args,
+            args,
             scene,
             plan,
-            &pool,
+            pool,
             &path,
             stats_path.as_deref(),
             label,

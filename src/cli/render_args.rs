@@ -75,7 +75,8 @@ pub struct RenderArgs {
     /// instead of leaving no file.
     #[arg(long)]
     pub write_partial: bool,
-    /// Worker threads, 1..256 (default: all cores). The image is the same for any number.
+    /// Worker threads, 1..256, for loading and building as well as tracing (default: all
+    /// cores). The image is the same for any number.
     #[arg(long, value_parser = super::within(prism::limits::THREADS))]
     pub threads: Option<u16>,
     /// Most reflection/refraction bounces, 0..64 (default: the scene's, else 5).
