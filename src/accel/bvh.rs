@@ -16,8 +16,9 @@ use std::mem::MaybeUninit;
 #[derive(Clone, Copy, Debug)]
 #[repr(C, align(64))]
 pub struct WideNode {
-    lo: [F32x4; 3],
-    hi: [F32x4; 3],
+    /// The boxes' sides, low then high on x, then on y, then on z (`plane`). One array, so
+    /// that a ray picks its near and far sides by index (`WideRay::near`) without a branch.
+    planes: [F32x4; 6],
     /// An inner node's index, a leaf's first primitive, or `NO_CHILD`.
     child: [u32; 4],
     /// A leaf's number of primitives; 0 for inner nodes and unused lanes.
@@ -25,6 +26,17 @@ pub struct WideNode {
 }
 
 const NO_CHILD: u32 = u32::MAX;
+
+/// `WideNode::planes[plane(axis, side)]` is a side of the boxes, LO or HI, on an axis. The
+/// two sides of an axis are neighbours: `^ FLIP` turns one's index into the other's.
+const LO: usize = 0;
+const HI: usize = 1;
+const FLIP: usize = 1;
+
+#[inline(always)]
+const fn plane(axis: usize, side: usize) -> usize {
+    2 * axis + side
+}
 
 /// What one lane of a node holds.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -37,20 +49,26 @@ pub enum Child {
 impl WideNode {
     /// Every lane unused, with an empty box that no ray enters.
     const EMPTY: WideNode = WideNode {
-        lo: [F32x4::INFINITY; 3],
-        hi: [F32x4::NEG_INFINITY; 3],
+        planes: [
+            F32x4::INFINITY,
+            F32x4::NEG_INFINITY,
+            F32x4::INFINITY,
+            F32x4::NEG_INFINITY,
+            F32x4::INFINITY,
+            F32x4::NEG_INFINITY,
+        ],
         child: [NO_CHILD; 4],
         count: [0; 4],
     };
 
     fn set(&mut self, lane: usize, bounds: Aabb, child: Child) {
         for axis in 0..3 {
-            let mut lo = self.lo[axis].to_array();
-            let mut hi = self.hi[axis].to_array();
+            let mut lo = self.planes[plane(axis, LO)].to_array();
+            let mut hi = self.planes[plane(axis, HI)].to_array();
             lo[lane] = bounds.min[axis];
             hi[lane] = bounds.max[axis];
-            self.lo[axis] = F32x4::from_array(lo);
-            self.hi[axis] = F32x4::from_array(hi);
+            self.planes[plane(axis, LO)] = F32x4::from_array(lo);
+            self.planes[plane(axis, HI)] = F32x4::from_array(hi);
         }
         (self.child[lane], self.count[lane]) = match child {
             Child::Empty => (NO_CHILD, 0),
@@ -69,11 +87,14 @@ impl WideNode {
 
     /// The box of one lane (empty for unused lanes).
     pub fn bounds(&self, lane: usize) -> Aabb {
-        let get =
-            |v: &[F32x4; 3]| glam::Vec3::from_array(std::array::from_fn(|a| v[a].to_array()[lane]));
+        let get = |side: usize| {
+            glam::Vec3::from_array(std::array::from_fn(|a| {
+                self.planes[plane(a, side)].to_array()[lane]
+            }))
+        };
         Aabb {
-            min: get(&self.lo),
-            max: get(&self.hi),
+            min: get(LO),
+            max: get(HI),
         }
     }
 
@@ -83,7 +104,8 @@ impl WideNode {
         let mut mask = 0b1111;
         for axis in 0..3 {
             let at = F32x4::splat(p[axis]);
-            mask &= self.lo[axis].le_mask(at) & at.le_mask(self.hi[axis]);
+            mask &=
+                self.planes[plane(axis, LO)].le_mask(at) & at.le_mask(self.planes[plane(axis, HI)]);
         }
         mask
     }
@@ -99,10 +121,14 @@ impl WideNode {
         for axis in 0..3 {
             // The near plane is the low one for a ray going up the axis: no min/max needed,
             // and an empty box (lo = +∞, hi = −∞) is missed by every ray.
-            let (near, far) = if ray.negative[axis] {
-                (self.hi[axis], self.lo[axis])
-            } else {
-                (self.lo[axis], self.hi[axis])
+            let near = ray.near[axis] as usize;
+            // SAFETY: `WideRay::new` makes `near` a side's index, below 6, and `^ FLIP`
+            // keeps it so; unchecked, as the test runs twice per axis per node.
+            let (near, far) = unsafe {
+                (
+                    *self.planes.get_unchecked(near),
+                    *self.planes.get_unchecked(near ^ FLIP),
+                )
             };
             let t_near = (near - ray.origin[axis]) * ray.inv_dir[axis];
             let t_far = (far - ray.origin[axis]) * ray.inv_dir_far[axis];
@@ -128,7 +154,9 @@ struct WideRay {
     inv_dir: [F32x4; 3],
     /// `inv_dir` scaled by 1 + 2γ(3): the far distances' rounding allowance.
     inv_dir_far: [F32x4; 3],
-    negative: [bool; 3],
+    /// Per axis, the index in `WideNode::planes` of the side the ray meets first: the high
+    /// side where it runs down the axis.
+    near: [u8; 3],
 }
 
 impl WideRay {
@@ -140,7 +168,16 @@ impl WideRay {
             inv_dir: std::array::from_fn(|a| F32x4::splat(q.inv_dir[a])),
             inv_dir_far: std::array::from_fn(|a| F32x4::splat(q.inv_dir[a] * widen)),
             // The sign bit, so that a −0 component (inverse −∞) counts as negative.
-            negative: std::array::from_fn(|a| q.inv_dir[a].is_sign_negative()),
+            near: std::array::from_fn(|a| {
+                plane(
+                    a,
+                    if q.inv_dir[a].is_sign_negative() {
+                        HI
+                    } else {
+                        LO
+                    },
+                ) as u8
+            }),
         }
     }
 }
@@ -347,51 +384,66 @@ impl Bvh {
             let n = &self.nodes[node];
             let (mask, t_enter) = n.enter(&ray, t_max);
             let t_enter = t_enter.to_array();
-            let pending = |t: f32, lane: usize| Pending {
-                t_enter: t,
-                child: n.child[lane],
-                count: n.count[lane],
+            // `lane & 3` is the lane itself: it only spares the indexing its bounds check.
+            let pending = |lane: usize| Pending {
+                t_enter: t_enter[lane & 3],
+                child: n.child[lane & 3],
+                count: n.count[lane & 3],
             };
             // The nearest child entered is taken at once; the others are pushed farthest
-            // first, so the nearest of them ends on top (ties: the higher lane first).
-            let mut next = if mask == 0 {
+            // first, so the nearest of them ends on top (ties: the higher lane first). A
+            // child just entered needs no test against t_max: `enter` found it nearer.
+            let next = if mask == 0 {
                 None
             } else if mask & (mask - 1) == 0 {
-                let lane = mask.trailing_zeros() as usize;
-                Some(pending(t_enter[lane], lane))
+                Some(pending(mask.trailing_zeros() as usize))
             } else {
-                let mut entered = [(0.0f32, 0usize); 4];
-                let mut k = 0;
-                let mut mask = mask;
-                while mask != 0 {
-                    let lane = mask.trailing_zeros() as usize;
-                    mask &= mask - 1;
-                    let mut j = k;
-                    while j > 0 && entered[j - 1].0 < t_enter[lane] {
-                        entered[j] = entered[j - 1];
-                        j -= 1;
+                let first = mask.trailing_zeros() as usize;
+                let rest = mask & (mask - 1);
+                if rest & (rest - 1) == 0 {
+                    // Two children, the common case: the farther is pushed.
+                    let second = rest.trailing_zeros() as usize;
+                    let (near, far) = if t_enter[first & 3] < t_enter[second & 3] {
+                        (first, second)
+                    } else {
+                        (second, first)
+                    };
+                    stack.push(pending(far));
+                    Some(pending(near))
+                } else {
+                    let mut entered = [0usize; 4];
+                    let mut k = 0;
+                    let mut mask = mask;
+                    while mask != 0 {
+                        let lane = mask.trailing_zeros() as usize;
+                        mask &= mask - 1;
+                        let mut j = k;
+                        while j > 0 && t_enter[entered[j - 1] & 3] < t_enter[lane & 3] {
+                            entered[j] = entered[j - 1];
+                            j -= 1;
+                        }
+                        entered[j] = lane;
+                        k += 1;
                     }
-                    entered[j] = (t_enter[lane], lane);
-                    k += 1;
+                    for &lane in &entered[..k - 1] {
+                        stack.push(pending(lane));
+                    }
+                    Some(pending(entered[k - 1]))
                 }
-                for &(t, lane) in &entered[..k - 1] {
-                    stack.push(pending(t, lane));
-                }
-                let (t, lane) = entered[k - 1];
-                Some(pending(t, lane))
             };
             // Test leaves as they come, until an inner node is due.
+            let mut next = next;
             loop {
                 let p = match next.take() {
                     Some(p) => p,
-                    None => match stack.pop() {
-                        Some(p) => p,
-                        None => return t_max,
+                    None => loop {
+                        match stack.pop() {
+                            Some(p) if p.t_enter > t_max => {}
+                            Some(p) => break p,
+                            None => return t_max,
+                        }
                     },
                 };
-                if p.t_enter > t_max {
-                    continue;
-                }
                 if p.count == 0 {
                     node = p.child as usize;
                     break;
