@@ -273,6 +273,67 @@ fn build_node(
     }
 }
 
+/// Every axis's bins: the box around the items in each, and how many.
+struct Bins {
+    bounds: [[Bounds; BINS]; 3],
+    count: [[usize; BINS]; 3],
+}
+
+impl Bins {
+    const EMPTY: Bins = Bins {
+        bounds: [[Bounds::EMPTY; BINS]; 3],
+        count: [[0; BINS]; 3],
+    };
+
+    /// The bins of `items` on every axis, in one pass; bin b of an axis holds the items
+    /// whose centroid c has `(c - low) * scale` in [b, b + 1) (the last bin also those
+    /// beyond). With `two_sets`, items take turns between two sets of bins, merged after:
+    /// neighbouring items often fall in one bin, and each would otherwise wait for the one
+    /// before it to be stored. A box's union and a count's sum do not depend on the order,
+    /// so the bins are the same either way.
+    fn of(items: &[BuildItem], low: Vec3A, scale: Vec3A, two_sets: bool) -> Bins {
+        let bin = |bins: &mut Bins, it: &BuildItem| {
+            let b = ((it.centroid() - low) * scale)
+                .as_uvec3()
+                .min(glam::UVec3::splat(BINS as u32 - 1));
+            for axis in 0..3 {
+                let b = b[axis] as usize;
+                bins.bounds[axis][b] = bins.bounds[axis][b].union(it);
+                bins.count[axis][b] += 1;
+            }
+        };
+        let mut all = Bins::EMPTY;
+        if !two_sets {
+            items.iter().for_each(|it| bin(&mut all, it));
+            return all;
+        }
+        let mut odd = Bins::EMPTY;
+        let pairs = items.chunks_exact(2);
+        if let [last] = pairs.remainder() {
+            bin(&mut all, last);
+        }
+        for pair in pairs {
+            bin(&mut all, &pair[0]);
+            bin(&mut odd, &pair[1]);
+        }
+        all.absorb(&odd);
+        all
+    }
+
+    fn absorb(&mut self, other: &Bins) {
+        for axis in 0..3 {
+            for b in 0..BINS {
+                self.bounds[axis][b] = self.bounds[axis][b].merge(other.bounds[axis][b]);
+                self.count[axis][b] += other.count[axis][b];
+            }
+        }
+    }
+}
+
+/// Nodes of at least this many items are binned into two sets of bins (`Bins::of`);
+/// below it, clearing and merging a second set costs more than it saves.
+const TWO_BIN_SETS_MIN: usize = 64;
+
 /// The cheapest split by the SAH among every axis's bin boundaries, as (cost, axis, the
 /// first bin on the right); None when all centroids coincide.
 fn best_split(
@@ -289,19 +350,11 @@ fn best_split(
         Vec3A::ZERO,
     );
     let low = Vec3A::from(centroid_bounds.min);
-    let mut bins = [[Bounds::EMPTY; BINS]; 3];
-    let mut bin_count = [[0usize; BINS]; 3];
-    // One pass bins every axis.
-    for it in items {
-        let b = ((it.centroid() - low) * scale)
-            .as_uvec3()
-            .min(glam::UVec3::splat(BINS as u32 - 1));
-        for axis in 0..3 {
-            let b = b[axis] as usize;
-            bins[axis][b] = bins[axis][b].union(it);
-            bin_count[axis][b] += 1;
-        }
-    }
+    let all = Bins::of(items, low, scale, items.len() >= TWO_BIN_SETS_MIN);
+    let Bins {
+        bounds: bins,
+        count: bin_count,
+    } = all;
     let mut best: Option<(f32, usize, usize)> = None;
     let parent_area = bounds.half_area().max(f32::MIN_POSITIVE);
     for axis in 0..3 {
@@ -423,6 +476,38 @@ mod tests {
             let mut seen = vec![false; n];
             check(&bounds, &bvh, &order, 0, &mut seen);
             assert!(seen.iter().all(|&s| s), "n = {n}");
+        }
+    }
+
+    /// Two sets of bins merged hold what one set holds, bit for bit, for odd and even
+    /// numbers of items.
+    #[test]
+    fn two_sets_of_bins_hold_what_one_holds() {
+        for n in [1, 2, 63, 64, 65, 1000, 1001] {
+            let items: Vec<BuildItem> = boxes(n)
+                .iter()
+                .map(|b| BuildItem {
+                    min: b.min.into(),
+                    max: b.max.into(),
+                })
+                .collect();
+            let around = Around::of(&items).centroids;
+            let extent = around.max - around.min;
+            let scale = Vec3A::splat(BINS as f32) / extent.max(Vec3A::splat(1e-6));
+            let one = Bins::of(&items, around.min, scale, false);
+            let two = Bins::of(&items, around.min, scale, true);
+            assert_eq!(one.count, two.count, "n = {n}");
+            for axis in 0..3 {
+                for b in 0..BINS {
+                    let (p, q) = (one.bounds[axis][b], two.bounds[axis][b]);
+                    assert_eq!(
+                        (p.min.to_array(), p.max.to_array()),
+                        (q.min.to_array(), q.max.to_array()),
+                        "n = {n}, axis {axis}, bin {b}"
+                    );
+                }
+            }
+            assert_eq!(one.count.iter().flatten().sum::<usize>(), 3 * n);
         }
     }
 
