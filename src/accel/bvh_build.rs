@@ -220,7 +220,7 @@ fn build_node(
             let scale = BINS as f32 / extent[axis];
             let min = centroid_bounds.min[axis];
             partition(items, order, |c| {
-                ((((c[axis] - min) * scale) as usize).min(BINS - 1)) < split
+                below_split((c[axis] - min) * scale, split)
             })
         }
         Some(_) => return leaf,
@@ -399,6 +399,15 @@ fn best_split(
     best
 }
 
+/// Whether an item at `x` = (c − min) · scale along the split axis (never negative) falls
+/// in a bin below `split` (< BINS): whether `min(x as usize, BINS − 1) < split`, which is
+/// `x < split`, and true for x = NaN (0 · ∞ on an extent so thin that its scale overflows),
+/// whose bin is 0. Compared without converting x, once per item per level.
+#[inline(always)]
+fn below_split(x: f32, split: usize) -> bool {
+    x < split as f32 || x.is_nan()
+}
+
 /// Moves the items whose centroid `left` accepts to the front; returns how many there
 /// are, and what each side's items are around (gathered here, in the pass that moves them,
 /// rather than in a pass of their own).
@@ -476,6 +485,27 @@ mod tests {
             let mut seen = vec![false; n];
             check(&bounds, &bvh, &order, 0, &mut seen);
             assert!(seen.iter().all(|&s| s), "n = {n}");
+        }
+    }
+
+    /// The split test compares without converting, and agrees with the bin index the
+    /// binning computed, at and around every boundary and at the odd values.
+    #[test]
+    fn the_split_test_agrees_with_the_bins() {
+        let bin = |x: f32| (x as usize).min(BINS - 1);
+        let mut xs = vec![0.0, f32::MIN_POSITIVE, 1e-30, f32::INFINITY, f32::NAN, 1e30];
+        for k in 0..=BINS + 1 {
+            let at = k as f32;
+            xs.extend([at, at.next_down(), at.next_up(), at + 0.5]);
+        }
+        for x in xs.into_iter().filter(|x| x.is_nan() || *x >= 0.0) {
+            for split in 1..BINS {
+                assert_eq!(
+                    below_split(x, split),
+                    bin(x) < split,
+                    "x = {x}, split {split}"
+                );
+            }
         }
     }
 
