@@ -293,9 +293,7 @@ impl Bins {
     /// so the bins are the same either way.
     fn of(items: &[BuildItem], low: Vec3A, scale: Vec3A, two_sets: bool) -> Bins {
         let bin = |bins: &mut Bins, it: &BuildItem| {
-            let b = ((it.centroid() - low) * scale)
-                .as_uvec3()
-                .min(glam::UVec3::splat(BINS as u32 - 1));
+            let b = bin_index((it.centroid() - low) * scale);
             for axis in 0..3 {
                 let b = b[axis] as usize;
                 bins.bounds[axis][b] = bins.bounds[axis][b].union(it);
@@ -327,6 +325,28 @@ impl Bins {
                 self.count[axis][b] += other.count[axis][b];
             }
         }
+    }
+}
+
+/// Each axis's bin for x = (c − low) · scale: `min(x as u32, BINS − 1)`, where x is never
+/// negative, and NaN (0 · ∞ on an extent so thin that its scale overflows) is bin 0. The
+/// lanes are clamped to [0, BINS − 1] first (`max` gives 0 for NaN), so that truncating
+/// all three at once gives exactly what the saturating conversion would.
+#[inline(always)]
+fn bin_index(x: Vec3A) -> [u32; 3] {
+    let clamped = x.max(Vec3A::ZERO).min(Vec3A::splat((BINS - 1) as f32));
+    #[cfg(target_arch = "x86_64")]
+    {
+        use std::arch::x86_64::{__m128, __m128i, _mm_cvttps_epi32};
+        // SAFETY: SSE2 is part of the x86-64 baseline; the lanes are in [0, BINS − 1].
+        let lanes: [u32; 4] = unsafe {
+            std::mem::transmute::<__m128i, [u32; 4]>(_mm_cvttps_epi32(__m128::from(clamped)))
+        };
+        [lanes[0], lanes[1], lanes[2]]
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        clamped.as_uvec3().to_array()
     }
 }
 
@@ -507,6 +527,30 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// The three lanes' bins at once are the saturating conversion's, lane by lane.
+    #[test]
+    fn bin_indices_are_the_saturating_conversions() {
+        let reference = |x: f32| (x as u32).min(BINS as u32 - 1);
+        let mut xs = vec![0.0, f32::MIN_POSITIVE, 1e-30, f32::INFINITY, f32::NAN, 1e30];
+        for k in 0..=BINS + 1 {
+            let at = k as f32;
+            xs.extend([at, at.next_down(), at.next_up(), at + 0.5]);
+        }
+        for &x in &xs {
+            for &y in &xs {
+                let z = xs[(x as usize + 3) % xs.len()];
+                let got = bin_index(Vec3A::new(x, y, z));
+                assert_eq!(
+                    got,
+                    [reference(x), reference(y), reference(z)],
+                    "{x} {y} {z}"
+                );
+            }
+        }
+        let got = bin_index(Vec3A::new(f32::NAN, f32::INFINITY, 11.5));
+        assert_eq!(got, [0, BINS as u32 - 1, BINS as u32 - 1]);
     }
 
     /// Two sets of bins merged hold what one set holds, bit for bit, for odd and even
