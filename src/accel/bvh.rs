@@ -393,46 +393,45 @@ impl Bvh {
             // The nearest child entered is taken at once; the others are pushed farthest
             // first, so the nearest of them ends on top (ties: the higher lane first). A
             // child just entered needs no test against t_max: `enter` found it nearer.
-            let next = if mask == 0 {
+            let rest = mask & mask.wrapping_sub(1);
+            let mut next = if mask == 0 {
                 None
-            } else if mask & (mask - 1) == 0 {
+            } else if rest == 0 {
                 Some(pending(mask.trailing_zeros() as usize))
-            } else {
-                let first = mask.trailing_zeros() as usize;
-                let rest = mask & (mask - 1);
-                if rest & (rest - 1) == 0 {
-                    // Two children, the common case: the farther is pushed.
-                    let second = rest.trailing_zeros() as usize;
-                    let (near, far) = if t_enter[first & 3] < t_enter[second & 3] {
-                        (first, second)
-                    } else {
-                        (second, first)
-                    };
-                    stack.push(pending(far));
-                    Some(pending(near))
+            } else if rest & (rest - 1) == 0 {
+                // Two children, the common case: the farther is pushed.
+                let (first, second) = (
+                    mask.trailing_zeros() as usize,
+                    rest.trailing_zeros() as usize,
+                );
+                let (near, far) = if t_enter[first & 3] < t_enter[second & 3] {
+                    (first, second)
                 } else {
-                    let mut entered = [0usize; 4];
-                    let mut k = 0;
-                    let mut mask = mask;
-                    while mask != 0 {
-                        let lane = mask.trailing_zeros() as usize;
-                        mask &= mask - 1;
-                        let mut j = k;
-                        while j > 0 && t_enter[entered[j - 1] & 3] < t_enter[lane & 3] {
-                            entered[j] = entered[j - 1];
-                            j -= 1;
-                        }
-                        entered[j] = lane;
-                        k += 1;
+                    (second, first)
+                };
+                stack.push(pending(far));
+                Some(pending(near))
+            } else {
+                let mut entered = [0usize; 4];
+                let mut k = 0;
+                let mut mask = mask;
+                while mask != 0 {
+                    let lane = mask.trailing_zeros() as usize;
+                    mask &= mask - 1;
+                    let mut j = k;
+                    while j > 0 && t_enter[entered[j - 1] & 3] < t_enter[lane & 3] {
+                        entered[j] = entered[j - 1];
+                        j -= 1;
                     }
-                    for &lane in &entered[..k - 1] {
-                        stack.push(pending(lane));
-                    }
-                    Some(pending(entered[k - 1]))
+                    entered[j] = lane;
+                    k += 1;
                 }
+                for &lane in &entered[..k - 1] {
+                    stack.push(pending(lane));
+                }
+                Some(pending(entered[k - 1]))
             };
             // Test leaves as they come, until an inner node is due.
-            let mut next = next;
             loop {
                 let p = match next.take() {
                     Some(p) => p,
