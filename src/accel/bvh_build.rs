@@ -125,20 +125,21 @@ impl BinaryBvh {
     /// Builds over primitives with the given bounds; returns the tree and the order in
     /// which the primitives must be stored (leaf ranges index into that order).
     pub fn build(bounds: &[Aabb], leaf: LeafCost) -> (BinaryBvh, Vec<u32>) {
+        use rayon::prelude::*;
         let mut items: Vec<BuildItem> = bounds
-            .iter()
+            .par_iter()
             .map(|b| BuildItem {
                 min: b.min.into(),
                 max: b.max.into(),
             })
             .collect();
-        let mut order: Vec<u32> = (0..bounds.len() as u32).collect();
+        let mut order: Vec<u32> = (0..bounds.len() as u32).into_par_iter().collect();
         if items.is_empty() {
             return (BinaryBvh::default(), Vec::new());
         }
         let mut nodes = vec![UNUSED; 2 * items.len() - 1];
         let (root, below) = nodes.split_at_mut(1);
-        let around = Around::of(&items);
+        let around = Around::of_many(&items);
         let at = Place {
             base: 1,
             offset: 0,
@@ -174,6 +175,24 @@ impl Around {
         items
             .iter()
             .fold(Around::EMPTY, |a, it| a.add(it, it.centroid()))
+    }
+
+    fn merge(self, other: Around) -> Around {
+        Around {
+            boxes: self.boxes.merge(other.boxes),
+            centroids: self.centroids.merge(other.centroids),
+        }
+    }
+
+    /// `of` for many items, in pieces on several threads, merged in order. The same boxes
+    /// as `of` bit for bit: of equal bounds such as 0 and −0, a lane's minimum and maximum
+    /// keep the later, and merging pieces in order keeps the same one.
+    fn of_many(items: &[BuildItem]) -> Around {
+        use rayon::prelude::*;
+        items
+            .par_chunks(PARALLEL_MIN)
+            .map(Around::of)
+            .reduce(|| Around::EMPTY, Around::merge)
     }
 }
 
@@ -583,6 +602,37 @@ mod tests {
                 }
             }
             assert_eq!(one.count.iter().flatten().sum::<usize>(), 3 * n);
+        }
+    }
+
+    /// The root's boxes found in pieces on several threads are those of one pass, bit for
+    /// bit, also where the extremes tie between 0 and −0 (which compare equal).
+    #[test]
+    fn bounds_in_pieces_are_those_of_one_pass() {
+        let bits = |b: Bounds| {
+            (
+                b.min.to_array().map(f32::to_bits),
+                b.max.to_array().map(f32::to_bits),
+            )
+        };
+        for n in [1, 5, PARALLEL_MIN + 1, 3 * PARALLEL_MIN + 7] {
+            for last_negative in [false, true] {
+                let items: Vec<BuildItem> = (0..n)
+                    .map(|i| {
+                        // Every item touches 0 on each side; the signs of those zeros vary.
+                        let negative = (i * 7919 % 13 < 6) != (last_negative && i == n - 1);
+                        let zero = if negative { -0.0 } else { 0.0 };
+                        let far = 1.0 + (i % 11) as f32;
+                        BuildItem {
+                            min: Vec3A::new(zero, -far, zero),
+                            max: Vec3A::new(far, zero, zero),
+                        }
+                    })
+                    .collect();
+                let (one, many) = (Around::of(&items), Around::of_many(&items));
+                assert_eq!(bits(one.boxes), bits(many.boxes), "n = {n}");
+                assert_eq!(bits(one.centroids), bits(many.centroids), "n = {n}");
+            }
         }
     }
 

@@ -44,17 +44,25 @@ impl Model {
             .collect();
         let (mut bvh, order) = Bvh::build_for(&bounds, GROUPED);
         mesh.reorder(&order);
-        let mut groups = Vec::with_capacity(mesh.triangle_count().div_ceil(GROUP_WIDTH));
+        // Each leaf's triangles become groups of up to four, numbered in leaf order: the
+        // numbering is cheap and in order, the groups are made in parallel after.
+        let mut spans: Vec<(u32, u32)> =
+            Vec::with_capacity(mesh.triangle_count().div_ceil(GROUP_WIDTH));
         bvh.map_leaves(|triangles| {
-            let start = groups.len() as u32;
+            let start = spans.len() as u32;
             for first in triangles.clone().step_by(GROUP_WIDTH) {
-                let count = (triangles.end - first).min(GROUP_WIDTH as u32);
+                spans.push((first, (triangles.end - first).min(GROUP_WIDTH as u32)));
+            }
+            start..spans.len() as u32
+        });
+        let groups: Vec<TriangleGroup> = spans
+            .into_par_iter()
+            .map(|(first, count)| {
                 let corners: [[Vec3A; 3]; GROUP_WIDTH] =
                     std::array::from_fn(|k| mesh.corners(first + (k as u32).min(count - 1)));
-                groups.push(TriangleGroup::new(first, &corners[..count as usize]));
-            }
-            start..groups.len() as u32
-        });
+                TriangleGroup::new(first, &corners[..count as usize])
+            })
+            .collect();
         Model::Mesh { mesh, bvh, groups }
     }
 

@@ -31,6 +31,8 @@ mod materials;
 mod meshes;
 mod mtl;
 mod obj;
+mod obj_join;
+mod obj_text;
 mod parse_tree;
 mod placement;
 mod read_cache;

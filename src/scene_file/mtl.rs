@@ -2,7 +2,7 @@
 //! index, `illum`, `map_Kd` and relief (`map_Bump`, `bump`, `norm`) statements, as written, each problem named by its line (the
 //! mapping to prism's materials is meshes.rs's).
 
-use super::obj::{LineError, numbers, rest_of, statements, without_byte_order_mark};
+use super::obj_text::{LineError, numbers, rest_of, statements, without_byte_order_mark};
 use std::collections::HashMap;
 
 /// A material as an MTL file gives it: the statements prism maps, as written.
