@@ -95,8 +95,13 @@ fn build_part(
     normals: &[Vec3],
     smooth: bool,
 ) -> Result<ObjPart, LineError> {
-    let all_uv = part.triangles.iter().flatten().all(|c| c[1] != NONE);
-    let all_normals = part.triangles.iter().flatten().all(|c| c[2] != NONE);
+    use rayon::prelude::*;
+    let every_corner =
+        |has: fn(&Corner) -> bool| part.triangles.par_iter().all(|t| t.iter().all(has));
+    let all_uv = every_corner(|c| c[1] != NONE);
+    let all_normals = every_corner(|c| c[2] != NONE);
+    // A key of the position alone is the same as the first corner's there.
+    let by_position = !all_uv && !all_normals;
     let key = |c: &Corner| -> Corner {
         [
             c[0],
@@ -110,13 +115,17 @@ fn build_part(
     let mut first_at: Vec<u32> = vec![u32::MAX; positions.len()];
     let mut keys: Vec<Corner> = Vec::new();
     let mut others: HashMap<Corner, u32> = HashMap::new();
-    let (mut p_out, mut uv_out, mut n_out) = (Vec::new(), Vec::new(), Vec::new());
+    // At least a vertex per position used, as a rule; seams add a few more.
+    let capacity = |all: bool| if all { positions.len() } else { 0 };
+    let mut p_out = Vec::with_capacity(positions.len());
+    let mut uv_out = Vec::with_capacity(capacity(all_uv));
+    let mut n_out = Vec::with_capacity(capacity(all_normals));
     let mut triangles = Vec::with_capacity(part.triangles.len());
     for tri in &part.triangles {
         triangles.push(tri.map(|c| {
             let k = key(&c);
             let first = first_at[k[0] as usize];
-            if first != u32::MAX && keys[first as usize] == k {
+            if first != u32::MAX && (by_position || keys[first as usize] == k) {
                 return first;
             }
             let mut add = || {
