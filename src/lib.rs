@@ -21,3 +21,4 @@ pub mod scene;
 pub mod scene_file;
 pub mod seed;
 mod simd;
+pub mod xorshift;

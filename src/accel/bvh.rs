@@ -623,13 +623,8 @@ mod tests {
         let (bvh, order) = Bvh::build(&bounds);
         assert!(bvh.depth() < STACK_SIZE);
         let stored: Vec<Sphere> = order.iter().map(|&i| spheres[i as usize]).collect();
-        let mut rng = 12345u32;
-        let mut next = || {
-            rng ^= rng << 13;
-            rng ^= rng >> 17;
-            rng ^= rng << 5;
-            rng as f32 / u32::MAX as f32
-        };
+        let mut rng = crate::xorshift::XorShift32::new(12345);
+        let mut next = || rng.next_f32();
         for _ in 0..2000 {
             let origin = Vec3::new(next() * 300.0, next() * 60.0, 20.0);
             let dir = Vec3::new(next() - 0.5, next() - 0.5, -1.0);

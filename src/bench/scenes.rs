@@ -12,13 +12,8 @@ use prism::scene::{RenderDefaults, Scene, SceneObject, ShapeDesc};
 /// whole field in view. Deterministic.
 pub fn sphere_field(n: usize) -> Scene {
     let side = (n as f32).sqrt() * 4.0 + 8.0;
-    let mut state = 0x9e37_79b9u32;
-    let mut next = move || {
-        state ^= state << 13;
-        state ^= state >> 17;
-        state ^= state << 5;
-        state as f32 / u32::MAX as f32
-    };
+    let mut rng = prism::xorshift::XorShift32::new(0x9e37_79b9);
+    let mut next = move || rng.next_f32();
     let mut objects: Vec<SceneObject> = (0..n)
         .map(|i| {
             let center = Vec3::new(

@@ -267,17 +267,12 @@ mod tests {
     use super::*;
     use crate::geometry::Ray;
 
-    struct Rng(u32);
-    impl Rng {
-        fn next(&mut self) -> f32 {
-            self.0 ^= self.0 << 13;
-            self.0 ^= self.0 >> 17;
-            self.0 ^= self.0 << 5;
-            self.0 as f32 / u32::MAX as f32
-        }
-        fn point(&mut self, scale: f32) -> Vec3A {
-            Vec3A::new(self.next() - 0.5, self.next() - 0.5, self.next() - 0.5) * scale
-        }
+    use crate::xorshift::XorShift32;
+
+    /// A point in the cube of side `scale` about the origin.
+    fn point(rng: &mut XorShift32, scale: f32) -> Vec3A {
+        let mut next = || rng.next_f32() - 0.5;
+        Vec3A::new(next(), next(), next()) * scale
     }
 
     /// The scalar loop the group stands in for.
@@ -309,18 +304,18 @@ mod tests {
     /// on them, groups of every size answer bit for bit what the scalar test answers.
     #[test]
     fn a_group_finds_what_its_triangles_find_one_by_one() {
-        let mut rng = Rng(0x1234_5678);
+        let mut rng = XorShift32::new(0x1234_5678);
         let mut hit = 0;
         for case in 0..20_000 {
             let n = 1 + case % GROUP_WIDTH;
             let scale = [1.0, 1e-3, 1e4][case % 3];
-            let shift = rng.point(scale * [0.0, 10.0, 1e3][case / 3 % 3]);
+            let shift = point(&mut rng, scale * [0.0, 10.0, 1e3][case / 3 % 3]);
             // A fan around one centre, so that neighbours share edges and rays graze them.
-            let centre = rng.point(scale) + shift;
+            let centre = point(&mut rng, scale) + shift;
             let mut tris: Vec<[Vec3A; 3]> = Vec::new();
-            let mut prev = rng.point(scale) + shift;
+            let mut prev = point(&mut rng, scale) + shift;
             for _ in 0..n {
-                let next = rng.point(scale) + shift;
+                let next = point(&mut rng, scale) + shift;
                 tris.push([centre, prev, next]);
                 prev = next;
             }
@@ -328,13 +323,13 @@ mod tests {
                 // From a corner or an edge: the rays that shadow rays are.
                 0 => tris[0][1],
                 1 => (tris[0][0] + tris[0][1]) * 0.5,
-                _ => rng.point(scale * 4.0) + shift,
+                _ => point(&mut rng, scale * 4.0) + shift,
             };
             let target = match case % 5 {
                 0 => tris[n - 1][2],
                 1 => centre,
                 2 => (centre + tris[0][1]) * 0.5,
-                _ => centre + rng.point(scale * 0.5),
+                _ => centre + point(&mut rng, scale * 0.5),
             };
             let q = RayQuery::new(Ray::new(
                 glam::Vec3::from(origin),

@@ -488,16 +488,11 @@ mod tests {
         .iter()
         .map(|w| w.to_string())
         .collect();
-        let mut state = 0x9e37_79b9u32;
+        let mut rng = crate::xorshift::XorShift32::new(0x9e37_79b9);
         for _ in 0..20_000 {
-            let len = 1 + state as usize % 9;
+            let len = 1 + rng.next_u32() as usize % 9;
             let word: String = (0..len)
-                .map(|_| {
-                    state ^= state << 13;
-                    state ^= state >> 17;
-                    state ^= state << 5;
-                    b"0123456789/-+x"[state as usize % 14] as char
-                })
+                .map(|_| b"0123456789/-+x"[rng.next_u32() as usize % 14] as char)
                 .collect();
             words.push(word);
         }
