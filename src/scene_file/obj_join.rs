@@ -2,7 +2,9 @@
 //! defined before it, and its triangles gathered into one part per material, the pieces
 //! in parallel once one ordered pass has found where each starts.
 
-use super::obj_text::{ABSENT, LineError, Piece, RawCorner, Statement, library_names};
+use super::obj_text::{
+    ABSENT, LineError, Piece, RawCorner, Statement, library_names, too_many_triangles,
+};
 
 /// One corner of a face: indices into the file's positions, texture coordinates, normals.
 pub(super) type Corner = [u32; 3];
@@ -175,12 +177,7 @@ impl<'a> Outline<'a> {
                     first_corner = end as usize;
                     triangles += corners.len() - 2;
                     if triangles > max_triangles {
-                        return Err(LineError {
-                            line,
-                            message: format!(
-                                "the mesh has more than the {max_triangles} triangles a scene may hold"
-                            ),
-                        });
+                        return Err(too_many_triangles(line, max_triangles));
                     }
                     // The outline made the unnamed part at the first face before any
                     // `usemtl`.

@@ -94,6 +94,14 @@ fn count_faces(text: &str, budget: usize) -> FaceCount {
     count
 }
 
+/// The refusal of the face at `line`, which takes the triangles past `max_triangles`.
+pub(super) fn too_many_triangles(line: usize, max_triangles: usize) -> LineError {
+    LineError {
+        line,
+        message: format!("the mesh has more than the {max_triangles} triangles a scene may hold"),
+    }
+}
+
 /// Refuses, before any table is built, a file whose faces make more than `max_triangles`
 /// triangles or one with more than `MAX_FACE_CORNERS` corners (its fan of triangles all
 /// meet at one corner, where a ray would test every one).
@@ -120,12 +128,10 @@ pub(super) fn refuse_oversized_faces(
         }
         if triangles + count.triangles > max_triangles {
             let at = count_faces(chunk, max_triangles - triangles).over_at;
-            return Err(LineError {
-                line: lines_before + at.unwrap_or(1),
-                message: format!(
-                    "the mesh has more than the {max_triangles} triangles a scene may hold"
-                ),
-            });
+            return Err(too_many_triangles(
+                lines_before + at.unwrap_or(1),
+                max_triangles,
+            ));
         }
         triangles += count.triangles;
         lines_before += count.lines;
