@@ -1,10 +1,10 @@
 //! The binned surface area heuristic build (Wald 2007) of a binary hierarchy, which
 //! `bvh.rs` then collapses into four-wide nodes for traversal.
 //!
-//! Each node makes three passes over its primitives: their boxes and centroids, the bins
-//! of all three axes at once, and the partition. A subtree of m primitives owns 2m − 1 node
-//! slots laid out in advance, so the two halves of a split are built on two threads without
-//! sharing anything; the tree is the same whichever thread builds what.
+//! Each node makes two passes over its primitives: the bins of all three axes at once, and
+//! the partition, which also gathers each side's boxes and centroids. The two halves of a
+//! large split are built on two threads without sharing anything, and the tree is laid
+//! out after, so it is the same whichever thread builds what.
 
 use crate::geometry::Aabb;
 use glam::Vec3A;
@@ -115,6 +115,7 @@ impl Bounds {
     }
 }
 
+/// A node slot before its node is written.
 const UNUSED: BinaryNode = BinaryNode {
     bounds: Aabb::EMPTY,
     first: 0,
@@ -137,15 +138,15 @@ impl BinaryBvh {
         if items.is_empty() {
             return (BinaryBvh::default(), Vec::new());
         }
-        let mut nodes = vec![UNUSED; 2 * items.len() - 1];
-        let (root, below) = nodes.split_at_mut(1);
         let around = Around::of_many(&items);
         let at = Place {
-            base: 1,
             offset: 0,
             depth: 0,
         };
-        root[0] = build_node(&mut items, &mut order, around, below, at, leaf);
+        let tree = Subtree::build(&mut items, &mut order, around, at, leaf);
+        let mut nodes = Vec::with_capacity(1 + tree.len_below());
+        nodes.push(UNUSED);
+        nodes[0] = tree.place(&mut nodes);
         (BinaryBvh { nodes }, order)
     }
 }
@@ -196,99 +197,211 @@ impl Around {
     }
 }
 
-/// Where a node's subtree goes: its descendants' first slot is node `base`, its primitives
-/// are `offset ..` of the final order, and it lies `depth` below the root.
+/// Where a node's subtree goes: its primitives are `offset ..` of the final order, and it
+/// lies `depth` below the root.
 #[derive(Clone, Copy)]
 struct Place {
-    base: usize,
     offset: usize,
     depth: usize,
 }
 
-/// The node over `items` (`around` is their boxes' box and their centroids'), with its
-/// descendants written into `below`, whose first slot is node `at.base`: the two children,
-/// then the left child's descendants, then the right child's.
-fn build_node(
+impl Place {
+    fn right_of(self, mid: usize) -> Place {
+        Place {
+            offset: self.offset + mid,
+            depth: self.depth + 1,
+        }
+    }
+
+    fn left(self) -> Place {
+        Place {
+            offset: self.offset,
+            depth: self.depth + 1,
+        }
+    }
+}
+
+/// A subtree as it is built: the large nodes split on the thread that reaches them, each
+/// half built on whichever thread takes it, and below `PARALLEL_MIN` primitives a subtree
+/// built on one thread into a list of its own. `place` then lays the whole tree out in one
+/// array in depth-first order, so only the nodes the tree has are ever written (a layout
+/// reserved in advance would hold 2m − 1 slots for m primitives, most of them never used),
+/// and the array is the same whichever thread built what.
+enum Subtree {
+    /// Built on one thread: its root, and the nodes below it, whose interior nodes'
+    /// `first` indexes `below`.
+    Serial {
+        root: BinaryNode,
+        below: Vec<BinaryNode>,
+    },
+    /// Split here, its halves built in parallel.
+    Split {
+        bounds: Aabb,
+        halves: Box<(Subtree, Subtree)>,
+    },
+}
+
+impl Subtree {
+    /// The subtree over `items` (`around` is their boxes' box and their centroids').
+    fn build(
+        items: &mut [BuildItem],
+        order: &mut [u32],
+        around: Around,
+        at: Place,
+        leaf_cost: LeafCost,
+    ) -> Subtree {
+        let n = items.len();
+        if n < PARALLEL_MIN {
+            let mut below = Vec::with_capacity(2 * n - 2);
+            let root = build_serial(items, order, around, at, leaf_cost, &mut below);
+            return Subtree::Serial { root, below };
+        }
+        let Some((mid, left_around, right_around)) =
+            split(items, order, around, at.depth, leaf_cost)
+        else {
+            return Subtree::Serial {
+                root: leaf_over(around, at, n),
+                below: Vec::new(),
+            };
+        };
+        let (left_items, right_items) = items.split_at_mut(mid);
+        let (left_order, right_order) = order.split_at_mut(mid);
+        let halves = rayon::join(
+            || Subtree::build(left_items, left_order, left_around, at.left(), leaf_cost),
+            || {
+                let at = at.right_of(mid);
+                Subtree::build(right_items, right_order, right_around, at, leaf_cost)
+            },
+        );
+        Subtree::Split {
+            bounds: around.boxes.aabb(),
+            halves: Box::new(halves),
+        }
+    }
+
+    /// How many nodes lie below the root.
+    fn len_below(&self) -> usize {
+        match self {
+            Subtree::Serial { below, .. } => below.len(),
+            Subtree::Split { halves, .. } => 2 + halves.0.len_below() + halves.1.len_below(),
+        }
+    }
+
+    /// Appends the nodes below the root to `out`, a child pair before the left child's
+    /// descendants and those before the right child's; returns the root.
+    fn place(&self, out: &mut Vec<BinaryNode>) -> BinaryNode {
+        match self {
+            Subtree::Serial { root, below } => {
+                let base = out.len() as u32;
+                let moved = |n: &BinaryNode| BinaryNode {
+                    first: if n.count == 0 {
+                        n.first + base
+                    } else {
+                        n.first
+                    },
+                    ..*n
+                };
+                out.extend(below.iter().map(moved));
+                moved(root)
+            }
+            Subtree::Split { bounds, halves } => {
+                let pair = out.len();
+                out.extend([UNUSED; 2]);
+                out[pair] = halves.0.place(out);
+                out[pair + 1] = halves.1.place(out);
+                BinaryNode {
+                    bounds: *bounds,
+                    first: pair as u32,
+                    count: 0,
+                }
+            }
+        }
+    }
+}
+
+/// The leaf over `n` items at `at`.
+fn leaf_over(around: Around, at: Place, n: usize) -> BinaryNode {
+    BinaryNode {
+        bounds: around.boxes.aabb(),
+        first: at.offset as u32,
+        count: n as u32,
+    }
+}
+
+/// The node over `items`, built on this thread, with its descendants appended to `below`:
+/// a child pair, then the left child's descendants, then the right child's.
+fn build_serial(
     items: &mut [BuildItem],
     order: &mut [u32],
     around: Around,
-    below: &mut [BinaryNode],
     at: Place,
     leaf_cost: LeafCost,
+    below: &mut Vec<BinaryNode>,
 ) -> BinaryNode {
-    let Place {
-        base,
-        offset,
-        depth,
-    } = at;
     let n = items.len();
-    let (bounds, centroid_bounds) = (around.boxes.aabb(), around.centroids.aabb());
-    let leaf = BinaryNode {
-        bounds,
-        first: offset as u32,
-        count: n as u32,
-    };
-    // A leaf at the depth limit, however large, keeps traversal within its fixed stack.
-    if depth >= MAX_DEPTH || n <= 1 {
-        return leaf;
-    }
-    let extent = centroid_bounds.max - centroid_bounds.min;
-    let best = best_split(items, &bounds, &centroid_bounds, leaf_cost);
-    let (mid, left_around, right_around) = match best {
-        Some((cost, axis, split)) if cost < leaf_cost.of(n) || n > leaf_cost.max => {
-            let scale = BINS as f32 / extent[axis];
-            let min = centroid_bounds.min[axis];
-            partition(items, order, |c| {
-                below_split((c[axis] - min) * scale, split)
-            })
-        }
-        Some(_) => return leaf,
-        // All centroids coincide: split in the middle if the leaf would be too large.
-        None if n > leaf_cost.max => {
-            let mid = n / 2;
-            (mid, Around::of(&items[..mid]), Around::of(&items[mid..]))
-        }
-        None => return leaf,
+    let Some((mid, left_around, right_around)) = split(items, order, around, at.depth, leaf_cost)
+    else {
+        return leaf_over(around, at, n);
     };
     let (left_items, right_items) = items.split_at_mut(mid);
     let (left_order, right_order) = order.split_at_mut(mid);
-    let (pair, rest) = below.split_at_mut(2);
-    let (left_below, right_below) = rest.split_at_mut(2 * mid - 2);
-    let left_base = base + 2;
-    let right_base = left_base + left_below.len();
-    let left = |items: &mut [BuildItem], order: &mut [u32], below: &mut [BinaryNode]| {
-        let at = Place {
-            base: left_base,
-            offset,
-            depth: depth + 1,
-        };
-        build_node(items, order, left_around, below, at, leaf_cost)
-    };
-    let right = |items: &mut [BuildItem], order: &mut [u32], below: &mut [BinaryNode]| {
-        let at = Place {
-            base: right_base,
-            offset: offset + mid,
-            depth: depth + 1,
-        };
-        build_node(items, order, right_around, below, at, leaf_cost)
-    };
-    let (l, r) = if n >= PARALLEL_MIN {
-        rayon::join(
-            || left(left_items, left_order, left_below),
-            || right(right_items, right_order, right_below),
-        )
-    } else {
-        (
-            left(left_items, left_order, left_below),
-            right(right_items, right_order, right_below),
-        )
-    };
-    pair[0] = l;
-    pair[1] = r;
+    let pair = below.len();
+    below.extend([UNUSED; 2]);
+    below[pair] = build_serial(
+        left_items,
+        left_order,
+        left_around,
+        at.left(),
+        leaf_cost,
+        below,
+    );
+    below[pair + 1] = build_serial(
+        right_items,
+        right_order,
+        right_around,
+        at.right_of(mid),
+        leaf_cost,
+        below,
+    );
     BinaryNode {
-        bounds,
-        first: base as u32,
+        bounds: around.boxes.aabb(),
+        first: pair as u32,
         count: 0,
+    }
+}
+
+/// Splits the node over `items` (`around` is their boxes' box and their centroids'), at
+/// `depth` below the root, by moving the left side's items to the front: how many they
+/// are, and what each side is around. None where the node stays a leaf.
+fn split(
+    items: &mut [BuildItem],
+    order: &mut [u32],
+    around: Around,
+    depth: usize,
+    leaf_cost: LeafCost,
+) -> Option<(usize, Around, Around)> {
+    let n = items.len();
+    // A leaf at the depth limit, however large, keeps traversal within its fixed stack.
+    if depth >= MAX_DEPTH || n <= 1 {
+        return None;
+    }
+    let (bounds, centroid_bounds) = (around.boxes.aabb(), around.centroids.aabb());
+    let extent = centroid_bounds.max - centroid_bounds.min;
+    match best_split(items, &bounds, &centroid_bounds, leaf_cost) {
+        Some((cost, axis, split)) if cost < leaf_cost.of(n) || n > leaf_cost.max => {
+            let scale = BINS as f32 / extent[axis];
+            let min = centroid_bounds.min[axis];
+            Some(partition(items, order, |c| {
+                below_split((c[axis] - min) * scale, split)
+            }))
+        }
+        Some(_) => None,
+        // All centroids coincide: split in the middle if the leaf would be too large.
+        None if n > leaf_cost.max => {
+            let mid = n / 2;
+            Some((mid, Around::of(&items[..mid]), Around::of(&items[mid..])))
+        }
+        None => None,
     }
 }
 
@@ -406,11 +519,10 @@ fn best_split(
         // the work saved where most nodes are.
         let mut full = [0usize; BINS];
         let mut k = 0;
+        // Without a branch: whether a bin is empty is as good as random.
         for (b, &count) in counts.iter().enumerate() {
-            if count > 0 {
-                full[k] = b;
-                k += 1;
-            }
+            full[k] = b;
+            k += (count > 0) as usize;
         }
         // Sweep from the right to know the cost of every right-hand side.
         let mut right_area = [0.0f32; BINS];
@@ -494,8 +606,14 @@ mod tests {
     }
 
     /// Every primitive is in exactly one leaf, every leaf's box holds its primitives' and
-    /// every interior node's box its children's.
-    fn check(bounds: &[Aabb], bvh: &BinaryBvh, order: &[u32], node: usize, seen: &mut [bool]) {
+    /// every interior node's box its children's; returns how many nodes it visited.
+    fn check(
+        bounds: &[Aabb],
+        bvh: &BinaryBvh,
+        order: &[u32],
+        node: usize,
+        seen: &mut [bool],
+    ) -> usize {
         let n = bvh.nodes[node];
         if n.count > 0 {
             for &p in &order[n.first as usize..(n.first + n.count) as usize] {
@@ -504,12 +622,15 @@ mod tests {
                 let b = bounds[p as usize];
                 assert!(n.bounds.min.cmple(b.min).all() && n.bounds.max.cmpge(b.max).all());
             }
+            1
         } else {
+            let mut visited = 1;
             for child in [n.first as usize, n.first as usize + 1] {
                 let c = bvh.nodes[child].bounds;
                 assert!(n.bounds.min.cmple(c.min).all() && n.bounds.max.cmpge(c.max).all());
-                check(bounds, bvh, order, child, seen);
+                visited += check(bounds, bvh, order, child, seen);
             }
+            visited
         }
     }
 
@@ -521,8 +642,10 @@ mod tests {
             let (bvh, order) = BinaryBvh::build(&bounds, LeafCost::SINGLE);
             assert_eq!(order.len(), n);
             let mut seen = vec![false; n];
-            check(&bounds, &bvh, &order, 0, &mut seen);
+            let visited = check(&bounds, &bvh, &order, 0, &mut seen);
             assert!(seen.iter().all(|&s| s), "n = {n}");
+            // The tree holds no slot that no node uses (each visited once: a tree).
+            assert_eq!(visited, bvh.nodes.len(), "n = {n}");
         }
     }
 
