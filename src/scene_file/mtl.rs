@@ -2,7 +2,8 @@
 //! index, `illum`, `map_Kd` and relief (`map_Bump`, `bump`, `norm`) statements, as written, each problem named by its line (the
 //! mapping to prism's materials is meshes.rs's).
 
-use super::obj_text::{LineError, numbers, rest_of, statements, without_byte_order_mark};
+use super::line_error::LineError;
+use super::obj_text::{numbers, rest_of, statements, without_byte_order_mark};
 use std::collections::HashMap;
 
 /// A material as an MTL file gives it: the statements prism maps, as written.

@@ -4,8 +4,9 @@
 //! as other readers do. Written here rather than taken from a crate so that a malformed
 //! line is reported by its number.
 
-use super::obj_join::{Corner, NONE, Outline, PartBuilder};
-pub use super::obj_text::LineError;
+pub use super::line_error::LineError;
+use super::obj_corner::{Corner, NONE};
+use super::obj_join::{Outline, PartBuilder};
 use super::obj_text::{
     Piece, cut_at_lines, read_piece, refuse_oversized_faces, without_byte_order_mark,
 };
@@ -37,10 +38,10 @@ pub struct ObjFile {
 /// Reads OBJ text. At most `max_triangles` triangles are accepted (a polygon of n corners
 /// makes n − 2); `smooth` asks for vertex normals where the file has none.
 ///
-/// Large text is cut at line ends into pieces whose numbers are read in parallel; the
-/// pieces are then joined, also in parallel, resolving face corners against the counts
-/// defined before each face and reporting the first problem in the file's order, as a
-/// reading from start to end would.
+/// Large text is cut at line ends into pieces read in parallel: a first pass counts what
+/// each piece defines, so that each resolves its faces' corners against what the file
+/// defined before them as it reads them. The pieces are then joined, also in parallel,
+/// reporting the first problem in the file's order, as a reading from start to end would.
 pub fn parse_obj(text: &str, max_triangles: usize, smooth: bool) -> Result<ObjFile, LineError> {
     let text = without_byte_order_mark(text);
     parse_pieces(text, cut_at_lines(text), max_triangles, smooth)
@@ -55,10 +56,20 @@ fn parse_pieces(
 ) -> Result<ObjFile, LineError> {
     use rayon::prelude::*;
     let counts = refuse_oversized_faces(&chunks, max_triangles)?;
+    // What the text before each piece defines, so that each resolves its own corners.
+    let defined_before: Vec<[usize; 3]> = counts
+        .iter()
+        .scan([0; 3], |sum, count| {
+            let before = *sum;
+            *sum = std::array::from_fn(|k| sum[k] + count.defined[k]);
+            Some(before)
+        })
+        .collect();
     let pieces: Vec<Piece> = chunks
         .into_par_iter()
         .zip(counts)
-        .map(|(chunk, count)| read_piece(chunk, &count))
+        .zip(defined_before)
+        .map(|((chunk, count), before)| read_piece(chunk, &count, before))
         .collect();
     let outline = Outline::of(&pieces);
     let mut parts = outline.fill(&pieces, max_triangles)?;
@@ -329,6 +340,9 @@ mod tests {
                 false,
             ),
             (text.replace("f -1 1 2", "vt"), usize::MAX, false),
+            // A piece that is not plain text counts its definitions the general way (an
+            // ideographic space is trimmed, so this is a vertex the last face uses).
+            (text.replace("v 9 9 9", "\u{3000}v 9 9 9"), usize::MAX, true),
             (with(26, "usemtl"), usize::MAX, false),
             (text.clone(), 8, true),
             (text.clone(), 7, false),

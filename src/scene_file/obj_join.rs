@@ -1,15 +1,10 @@
-//! The pieces of an OBJ file joined: each face's corners resolved against what the file
-//! defined before it, and its triangles gathered into one part per material, the pieces
-//! in parallel once one ordered pass has found where each starts.
+//! The pieces of an OBJ file joined: their faces, whose corners the reading resolved,
+//! gathered into one part per material, the pieces in parallel once one ordered pass over
+//! their material statements has found where each starts.
 
-use super::obj_text::{
-    ABSENT, LineError, Piece, RawCorner, Statement, library_names, too_many_triangles,
-};
-
-/// One corner of a face: indices into the file's positions, texture coordinates, normals.
-pub(super) type Corner = [u32; 3];
-/// A corner's index where it has none (no texture coordinate, no normal).
-pub(super) const NONE: u32 = u32::MAX;
+use super::line_error::LineError;
+use super::obj_corner::Corner;
+use super::obj_text::{Piece, Statement, library_names, too_many_triangles};
 
 /// The faces that use one material, as they are read.
 pub(super) struct PartBuilder {
@@ -19,10 +14,11 @@ pub(super) struct PartBuilder {
     pub(super) triangles: Vec<[Corner; 3]>,
 }
 
-/// What the pieces make together, found in one pass over their statements in order
-/// before any corner is resolved: where each piece starts, the parts in the order the
-/// file first uses them and how many triangles each piece adds to each, so that the
-/// pieces can then resolve their corners and write their triangles in parallel.
+/// What the pieces make together, found in one pass over their material statements in
+/// order (a run of faces between two counts its triangles from where its corners start
+/// and end): where each piece starts, the parts in the order the file first uses them and
+/// how many triangles each piece adds to each, so that the pieces can then write their
+/// triangles in parallel.
 pub(super) struct Outline<'a> {
     /// Where each piece starts, for the pieces up to and including the first that ends in
     /// a problem (the rest are never reached).
@@ -36,14 +32,51 @@ pub(super) struct Outline<'a> {
     pub(super) libraries: Vec<(String, usize)>,
 }
 
-/// What the text before a piece defined and made, and the part its faces join first.
+/// What the text before a piece made, and the part its faces join first.
 #[derive(Clone, Copy)]
 struct PieceStart {
-    /// Positions, texture coordinates and normals.
-    defined: [usize; 3],
     lines: usize,
     triangles: usize,
     part: Option<usize>,
+}
+
+/// A piece's faces `from .. to` (indices into its faces), which use one material.
+struct Run {
+    from: usize,
+    to: usize,
+}
+
+impl Run {
+    /// The triangles the run's faces make: n − 2 for a face of n corners.
+    fn triangles(&self, piece: &Piece) -> usize {
+        piece.corners_before(self.to) - piece.corners_before(self.from) - 2 * (self.to - self.from)
+    }
+}
+
+/// What a piece holds, in order: runs of faces and the statements between them.
+enum Step<'s, 'a> {
+    Run(Run),
+    Statement(&'s Statement<'a>),
+}
+
+/// A piece's statements in order, with the non-empty runs of faces between them.
+fn walk<'s, 'a>(piece: &'s Piece<'a>, mut on: impl FnMut(Step<'s, 'a>)) {
+    let mut from = 0;
+    for statement in &piece.statements {
+        if let Statement::UseMtl { faces, .. } = *statement {
+            if faces > from {
+                on(Step::Run(Run { from, to: faces }));
+            }
+            from = faces;
+        }
+        on(Step::Statement(statement));
+    }
+    if piece.faces.len() > from {
+        on(Step::Run(Run {
+            from,
+            to: piece.faces.len(),
+        }));
+    }
 }
 
 impl<'a> Outline<'a> {
@@ -56,7 +89,6 @@ impl<'a> Outline<'a> {
             libraries: Vec::new(),
         };
         let mut start = PieceStart {
-            defined: [0; 3],
             lines: 0,
             triangles: 0,
             part: None,
@@ -64,44 +96,38 @@ impl<'a> Outline<'a> {
         for piece in pieces {
             outline.starts.push(start);
             let mut made = vec![0; outline.parts.len()];
-            let mut first_corner = 0;
-            for statement in &piece.statements {
-                match *statement {
-                    Statement::Face { line, end, .. } => {
-                        let triangles = end as usize - first_corner - 2;
-                        first_corner = end as usize;
-                        let part = *start.part.get_or_insert_with(|| {
-                            outline.parts.push((None, start.lines + line));
-                            outline.unnamed = Some(outline.parts.len() - 1);
-                            outline.parts.len() - 1
-                        });
-                        made.resize(outline.parts.len(), 0);
-                        made[part] += triangles;
-                        start.triangles += triangles;
-                    }
-                    Statement::UseMtl { line, name } => {
-                        let known = outline.parts.iter().position(|p| p.0 == Some(name));
-                        start.part = Some(known.unwrap_or_else(|| {
-                            outline.parts.push((Some(name), start.lines + line));
-                            outline.parts.len() - 1
-                        }));
-                    }
-                    Statement::MtlLib { line, name } => {
-                        for library in library_names(name) {
-                            outline
-                                .libraries
-                                .push((library.to_string(), start.lines + line));
-                        }
+            walk(piece, |step| match step {
+                Step::Run(run) => {
+                    let part = *start.part.get_or_insert_with(|| {
+                        let line = start.lines + piece.faces[run.from].line as usize;
+                        outline.parts.push((None, line));
+                        outline.unnamed = Some(outline.parts.len() - 1);
+                        outline.parts.len() - 1
+                    });
+                    let triangles = run.triangles(piece);
+                    made.resize(outline.parts.len(), 0);
+                    made[part] += triangles;
+                    start.triangles += triangles;
+                }
+                Step::Statement(&Statement::UseMtl { line, name, .. }) => {
+                    let known = outline.parts.iter().position(|p| p.0 == Some(name));
+                    start.part = Some(known.unwrap_or_else(|| {
+                        outline.parts.push((Some(name), start.lines + line));
+                        outline.parts.len() - 1
+                    }));
+                }
+                Step::Statement(&Statement::MtlLib { line, name }) => {
+                    for library in library_names(name) {
+                        outline
+                            .libraries
+                            .push((library.to_string(), start.lines + line));
                     }
                 }
-            }
+            });
             outline.made.push(made);
             if piece.error.is_some() {
                 break;
             }
-            start.defined[0] += piece.positions.len();
-            start.defined[1] += piece.uvs.len();
-            start.defined[2] += piece.normals.len();
             start.lines += piece.lines;
         }
         for made in &mut outline.made {
@@ -110,8 +136,8 @@ impl<'a> Outline<'a> {
         outline
     }
 
-    /// The parts, with every piece's triangles resolved and written in parallel into its
-    /// own stretch of each part; the first problem in the file's order, if any.
+    /// The parts, with every piece's triangles written in parallel into its own stretch of
+    /// each part; the first problem in the file's order, if any.
     pub(super) fn fill(
         &self,
         pieces: &[Piece<'a>],
@@ -150,8 +176,7 @@ impl<'a> Outline<'a> {
         Ok(parts)
     }
 
-    /// Resolves one piece's face corners against what was defined before each face and
-    /// writes its triangles (polygons as fans) into its stretches of the parts.
+    /// Writes one piece's triangles (polygons as fans) into its stretches of the parts.
     fn fill_piece(
         &self,
         piece: &Piece,
@@ -162,79 +187,44 @@ impl<'a> Outline<'a> {
         let mut written = vec![0; stretch.len()];
         let mut current = start.part;
         let mut triangles = start.triangles;
-        let mut corners: Vec<Corner> = Vec::new();
-        let mut first_corner = 0;
-        for statement in &piece.statements {
-            match *statement {
-                Statement::Face { line, end, counts } => {
-                    let line = start.lines + line;
-                    let so_far: [usize; 3] =
-                        std::array::from_fn(|k| start.defined[k] + counts[k] as usize);
-                    corners.clear();
-                    for raw in &piece.corners[first_corner..end as usize] {
-                        corners.push(resolve(raw, so_far, line)?);
-                    }
-                    first_corner = end as usize;
+        let mut over = None;
+        walk(piece, |step| match step {
+            Step::Run(run) => {
+                if over.is_some() {
+                    return;
+                }
+                // The outline made the unnamed part at the first face before any `usemtl`.
+                let part = *current.get_or_insert_with(|| {
+                    self.unnamed
+                        .expect("the outline made the part of unnamed faces")
+                });
+                for k in run.from..run.to {
+                    let corners =
+                        &piece.corners[piece.corners_before(k)..piece.corners_before(k + 1)];
                     triangles += corners.len() - 2;
                     if triangles > max_triangles {
-                        return Err(too_many_triangles(line, max_triangles));
+                        let line = start.lines + piece.faces[k].line as usize;
+                        over = Some(too_many_triangles(line, max_triangles));
+                        return;
                     }
-                    // The outline made the unnamed part at the first face before any
-                    // `usemtl`.
-                    let part = *current.get_or_insert_with(|| {
-                        self.unnamed
-                            .expect("the outline made the part of unnamed faces")
-                    });
                     for i in 1..corners.len() - 1 {
                         stretch[part][written[part]] = [corners[0], corners[i], corners[i + 1]];
                         written[part] += 1;
                     }
                 }
-                Statement::UseMtl { name, .. } => {
-                    current = self.parts.iter().position(|p| p.0 == Some(name));
-                }
-                Statement::MtlLib { .. } => {}
             }
-        }
-        match &piece.error {
-            Some(e) => Err(LineError {
+            Step::Statement(&Statement::UseMtl { name, .. }) => {
+                current = self.parts.iter().position(|p| p.0 == Some(name));
+            }
+            Step::Statement(Statement::MtlLib { .. }) => {}
+        });
+        match (over, &piece.error) {
+            (Some(e), _) => Err(e),
+            (None, Some(e)) => Err(LineError {
                 line: start.lines + e.line,
                 message: e.message.clone(),
             }),
-            None => Ok(()),
+            (None, None) => Ok(()),
         }
     }
-}
-
-/// A corner's indices resolved (1-based, or negative: counted back from the last element
-/// defined so far) against the counts of positions, texture coordinates and normals so far.
-fn resolve(raw: &RawCorner, counts: [usize; 3], line: usize) -> Result<Corner, LineError> {
-    let written = || match raw {
-        [v, ABSENT, ABSENT] => format!("{v}"),
-        [v, t, ABSENT] => format!("{v}/{t}"),
-        [v, ABSENT, n] => format!("{v}//{n}"),
-        [v, t, n] => format!("{v}/{t}/{n}"),
-    };
-    let what = ["vertex", "texture coordinate", "normal"];
-    let mut out = [NONE; 3];
-    for k in 0..3 {
-        let i = raw[k];
-        if i == ABSENT {
-            continue;
-        }
-        let count = counts[k];
-        let resolved = if i > 0 { i - 1 } else { count as i64 + i };
-        if i == 0 || resolved < 0 || resolved >= count as i64 {
-            return Err(LineError {
-                line,
-                message: format!(
-                    "face corner {}: {} index {i} is out of range ({count} defined so far)",
-                    crate::messages::quoted(&written()),
-                    what[k]
-                ),
-            });
-        }
-        out[k] = resolved as u32;
-    }
-    Ok(out)
 }

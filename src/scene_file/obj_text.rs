@@ -1,19 +1,13 @@
-//! OBJ text read line by line: the cut into pieces read in parallel, the statements of
-//! each piece with its numbers and its faces' corners as written, and the line reading
-//! MTL files share (mtl.rs). Nothing here depends on what another piece defines; obj_join.rs
-//! resolves that.
+//! OBJ text read line by line: the cut into pieces read in parallel, a first pass that
+//! counts what each piece defines, the statements of each piece with its numbers and its
+//! faces' corners, resolved against what the text before them defines, and the line
+//! reading MTL files share (mtl.rs). Which material a piece's faces use depends on the
+//! pieces before it; obj_join.rs joins them.
 
+use super::line_error::LineError;
+use super::obj_corner::{Corner, RawCorner, raw_corner, resolve};
 use crate::limits;
 use glam::{Vec2, Vec3};
-
-/// A problem at a line of an OBJ or MTL file.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct LineError {
-    /// The line, counted from 1.
-    pub line: usize,
-    /// What is wrong.
-    pub message: String,
-}
 
 /// Text below this size is read in one piece; larger text in pieces read in parallel, each
 /// at least this large (smaller pieces would cost more to hand out than to read).
@@ -40,11 +34,20 @@ pub(super) fn cut_at_lines(text: &str) -> Vec<&str> {
     pieces
 }
 
-/// What the faces of a piece of text make, counted before anything is built.
+/// What a piece of text defines and what its faces make, counted before anything is
+/// read.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub(super) struct FaceCount {
     /// The triangles its faces make (n − 2 for a face of n corners).
     triangles: usize,
+    /// Its faces.
+    faces: usize,
+    /// Its `v`, `vt` and `vn` statements: exactly the positions, texture coordinates and
+    /// normals it defines when every one of them is well formed (when one is not, the
+    /// piece ends in a problem there, and nothing after it is used).
+    pub(super) defined: [usize; 3],
+    /// Whether the text is plain (`is_plain`).
+    plain: bool,
     /// Its lines.
     lines: usize,
     /// The first face with more than `MAX_FACE_CORNERS` corners: its line and corners.
@@ -54,19 +57,46 @@ pub(super) struct FaceCount {
 }
 
 /// Counts the faces of `text` (lines from 1) without reading their numbers, stopping at a
-/// face too wide or at the one that takes the triangles past `budget`. Bytes, not
-/// statements: it runs over the whole file before the reading does.
+/// face too wide or at the one that takes the triangles past `budget`, and its
+/// definitions. Bytes, not statements: it runs over the whole file before the reading
+/// does. In plain text a line's keyword is found as `PlainWords` finds it, so the
+/// definitions counted are those the reading finds; other text is counted the general way.
 fn count_faces(text: &str, budget: usize) -> FaceCount {
     let bytes = text.as_bytes();
     let blank = |b: u8| b == b' ' || b == b'\t' || b == b'\r';
-    let mut count = FaceCount::default();
+    let class = |i: usize| {
+        bytes
+            .get(i)
+            .map_or(ByteClass::End, |&b| BYTE_CLASS[b as usize])
+    };
+    let mut count = FaceCount {
+        plain: is_plain(text),
+        ..FaceCount::default()
+    };
+    if !count.plain {
+        for (_, _, keyword, _) in statements(text) {
+            if let Some(k) = ["v", "vt", "vn"].iter().position(|&d| d == keyword) {
+                count.defined[k] += 1;
+            }
+        }
+    }
     let mut i = 0;
     while i < bytes.len() {
         count.lines += 1;
         while i < bytes.len() && blank(bytes[i]) {
             i += 1;
         }
-        if bytes[i..].starts_with(b"f") && bytes.get(i + 1).is_some_and(|&b| blank(b)) {
+        if count.plain && bytes.get(i) == Some(&b'v') {
+            let kind = match bytes.get(i + 1) {
+                Some(b't') => 1,
+                Some(b'n') => 2,
+                _ => 0,
+            };
+            let keyword_end = if kind == 0 { i + 1 } else { i + 2 };
+            if class(keyword_end) != ByteClass::Word {
+                count.defined[kind] += 1;
+            }
+        } else if bytes[i..].starts_with(b"f") && bytes.get(i + 1).is_some_and(|&b| blank(b)) {
             let mut corners = 0;
             let mut in_word = false;
             i += 1;
@@ -80,6 +110,7 @@ fn count_faces(text: &str, budget: usize) -> FaceCount {
                 count.widest = Some((count.lines, corners));
                 return count;
             }
+            count.faces += 1;
             count.triangles += corners.saturating_sub(2);
             if count.triangles > budget {
                 count.over_at = Some(count.lines);
@@ -139,25 +170,23 @@ pub(super) fn refuse_oversized_faces(
     Ok(counts)
 }
 
-/// A face corner as written: vertex, texture coordinate and normal indices (1-based, or
-/// negative to count back), `ABSENT` where the corner has none.
-pub(super) type RawCorner = [i64; 3];
-pub(super) const ABSENT: i64 = i64::MIN;
+/// A face of a piece: where its corners end in the piece's corner list, and its line
+/// (counted from the piece's start; a mesh file is far shorter than 2^32 lines).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) struct Face {
+    pub(super) end: u32,
+    pub(super) line: u32,
+}
 
-/// The statements of a piece that depend on what came before it, in order; lines are
-/// counted from the piece's start.
+/// The statements of a piece that choose a material or name material libraries, in
+/// order; lines are counted from the piece's start.
 #[derive(Debug, PartialEq)]
 pub(super) enum Statement<'a> {
-    /// A face, whose corners end at `end` in the piece's corner list, read when the piece
-    /// had defined `counts` positions, texture coordinates and normals.
-    Face {
-        line: usize,
-        end: u32,
-        counts: [u32; 3],
-    },
+    /// The material of the piece's faces from face `faces` on.
     UseMtl {
         line: usize,
         name: &'a str,
+        faces: usize,
     },
     MtlLib {
         line: usize,
@@ -165,17 +194,31 @@ pub(super) enum Statement<'a> {
     },
 }
 
-/// What one piece of OBJ text defines, read on its own.
+/// What one piece of OBJ text defines and its faces, read on its own once the counts of
+/// what the text before it defines are known.
 pub(super) struct Piece<'a> {
     pub(super) positions: Vec<Vec3>,
     pub(super) uvs: Vec<Vec2>,
     pub(super) normals: Vec<Vec3>,
-    pub(super) corners: Vec<RawCorner>,
+    /// Every face's corners, resolved against what the file defined before the face.
+    pub(super) corners: Vec<Corner>,
+    pub(super) faces: Vec<Face>,
     pub(super) statements: Vec<Statement<'a>>,
+    /// The positions, texture coordinates and normals the text before the piece defines.
+    defined_before: [usize; 3],
+    /// The corners of the face being read, as written.
+    face: Vec<RawCorner>,
     /// The first problem, which ends the piece (its line counted in the piece).
     pub(super) error: Option<LineError>,
     /// How many lines the piece holds.
     pub(super) lines: usize,
+}
+
+impl Piece<'_> {
+    /// Where face `k`'s corners start in `corners`.
+    pub(super) fn corners_before(&self, k: usize) -> usize {
+        k.checked_sub(1).map_or(0, |k| self.faces[k].end as usize)
+    }
 }
 
 /// Reads one piece, whose faces `count` counted: its numbers, its faces' corners as
@@ -183,17 +226,24 @@ pub(super) struct Piece<'a> {
 /// corners makes n − 2 triangles, so its corners are at most three per triangle, and a line
 /// that is not a face may be a vertex): grown by doubling instead, they would be copied and
 /// their fresh pages touched again and again.
-pub(super) fn read_piece<'a>(text: &'a str, count: &FaceCount) -> Piece<'a> {
+pub(super) fn read_piece<'a>(
+    text: &'a str,
+    count: &FaceCount,
+    defined_before: [usize; 3],
+) -> Piece<'a> {
     let mut piece = Piece {
-        positions: Vec::with_capacity(count.lines.saturating_sub(count.triangles.min(count.lines))),
-        uvs: Vec::new(),
-        normals: Vec::new(),
+        positions: Vec::with_capacity(count.defined[0]),
+        uvs: Vec::with_capacity(count.defined[1]),
+        normals: Vec::with_capacity(count.defined[2]),
         corners: Vec::with_capacity(3 * count.triangles),
-        statements: Vec::with_capacity(count.triangles),
+        faces: Vec::with_capacity(count.faces),
+        statements: Vec::new(),
+        defined_before,
+        face: Vec::new(),
         error: None,
         lines: text.bytes().filter(|&b| b == b'\n').count(),
     };
-    let read = if is_plain(text) {
+    let read = if count.plain {
         read_plain(text, &mut piece)
     } else {
         read_general(text, &mut piece)
@@ -332,7 +382,10 @@ fn read_statement<'a>(
             if name.is_empty() {
                 return Err(fail("`usemtl` needs a material name".into()));
             }
-            piece.statements.push(Statement::UseMtl { line, name });
+            let faces = piece.faces.len();
+            piece
+                .statements
+                .push(Statement::UseMtl { line, name, faces });
         }
         "mtllib" => {
             let name = rest_of(content, keyword);
@@ -405,24 +458,29 @@ fn read_data<'a>(
             piece.normals.push(Vec3::from_slice(&n.values));
         }
         "f" => {
-            let start = piece.corners.len();
+            let so_far = [
+                piece.defined_before[0] + piece.positions.len(),
+                piece.defined_before[1] + piece.uvs.len(),
+                piece.defined_before[2] + piece.normals.len(),
+            ];
+            // Every corner is read before any is resolved: a malformed corner, or too few,
+            // is the face's problem before an index out of range is.
+            piece.face.clear();
             for word in words {
-                piece.corners.push(raw_corner(word, line)?);
+                piece.face.push(raw_corner(word, line)?);
             }
-            let count = piece.corners.len() - start;
+            let count = piece.face.len();
             if count < 3 {
                 return Err(fail(format!(
                     "a face needs at least three corners, got {count}"
                 )));
             }
-            piece.statements.push(Statement::Face {
-                line,
+            for raw in &piece.face {
+                piece.corners.push(resolve(raw, so_far, line)?);
+            }
+            piece.faces.push(Face {
                 end: piece.corners.len() as u32,
-                counts: [
-                    piece.positions.len() as u32,
-                    piece.uvs.len() as u32,
-                    piece.normals.len() as u32,
-                ],
+                line: line as u32,
             });
         }
         _ => return Ok(false),
@@ -519,140 +577,9 @@ pub(super) fn rest_of<'a>(content: &'a str, keyword: &str) -> &'a str {
     content[keyword.len()..].trim()
 }
 
-/// One face corner as written, `v`, `v/vt`, `v//vn` or `v/vt/vn`: its indices, not yet
-/// checked against what is defined.
-fn raw_corner(word: &str, line: usize) -> Result<RawCorner, LineError> {
-    match plain_corner(word.as_bytes()) {
-        Some(corner) => Ok(corner),
-        None => general_corner(word, line),
-    }
-}
-
-/// `raw_corner` by the general parser, for every spelling and every refusal.
-fn general_corner(word: &str, line: usize) -> Result<RawCorner, LineError> {
-    let fail = |message: String| LineError { line, message };
-    let mut fields = word.split('/');
-    let mut index = |what: &str, required: bool| -> Result<i64, LineError> {
-        let Some(text) = fields.next().filter(|t| !t.is_empty() || required) else {
-            return Ok(ABSENT);
-        };
-        text.parse().map_err(|_| {
-            fail(format!(
-                "face corner {}: {} is not a {what} index",
-                crate::messages::quoted(word),
-                crate::messages::quoted(text)
-            ))
-        })
-    };
-    let v = index("vertex", true)?;
-    let vt = index("texture coordinate", false)?;
-    let vn = index("normal", false)?;
-    if fields.next().is_some() {
-        return Err(fail(format!(
-            "face corner {} has more than three indices",
-            crate::messages::quoted(word)
-        )));
-    }
-    Ok([v, vt, vn])
-}
-
-/// The common spelling of a corner, up to three fields of digits with an optional minus
-/// sign (an empty field after the first: none), read without the general parser, which a
-/// million-triangle file would run millions of times. None for anything else and for a
-/// number out of range, which `raw_corner` then reads, or refuses, the general way.
-#[inline]
-fn plain_corner(word: &[u8]) -> Option<RawCorner> {
-    let mut corner = [ABSENT; 3];
-    let mut field = 0;
-    let mut i = 0;
-    loop {
-        let negative = word.get(i) == Some(&b'-');
-        i += negative as usize;
-        let digits = i;
-        let mut value: i64 = 0;
-        while let Some(&b) = word.get(i).filter(|b| b.is_ascii_digit()) {
-            value = value.checked_mul(10)?.checked_add(i64::from(b - b'0'))?;
-            i += 1;
-        }
-        if i > digits {
-            corner[field] = if negative { -value } else { value };
-        } else if negative || field == 0 {
-            return None;
-        }
-        match word.get(i) {
-            None => return Some(corner),
-            Some(b'/') if field < 2 => {
-                field += 1;
-                i += 1;
-            }
-            Some(_) => return None,
-        }
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// The fast reading of a corner answers what the general one does wherever it answers,
-    /// and leaves to it everything unusual: signs, empty and extra fields, numbers out of
-    /// range, stray characters.
-    #[test]
-    fn plain_corners_read_as_the_general_parser_reads_them() {
-        let mut words: Vec<String> = [
-            "1",
-            "12/7",
-            "3//9",
-            "4/5/6",
-            "-1",
-            "-2/-3/-4",
-            "1/",
-            "1//",
-            "0",
-            "-0",
-            "007",
-            "+1",
-            "",
-            "/1",
-            "//",
-            "-",
-            "1-2",
-            "1/2/3/",
-            "1/2/3/4",
-            "1 ",
-            "a",
-            "1/a",
-            "1/-",
-            "9223372036854775807",
-            "9223372036854775808",
-            "-9223372036854775808",
-            "-9223372036854775809",
-            "99999999999999999999/1",
-            "1/+2",
-            "１",
-        ]
-        .iter()
-        .map(|w| w.to_string())
-        .collect();
-        let mut rng = crate::xorshift::XorShift32::new(0x9e37_79b9);
-        for _ in 0..20_000 {
-            let len = 1 + rng.next_u32() as usize % 9;
-            let word: String = (0..len)
-                .map(|_| b"0123456789/-+x"[rng.next_u32() as usize % 14] as char)
-                .collect();
-            words.push(word);
-        }
-        let mut plain = 0;
-        for w in &words {
-            let general = general_corner(w, 1).ok();
-            if let Some(fast) = plain_corner(w.as_bytes()) {
-                assert_eq!(Some(fast), general, "{w:?}");
-                plain += 1;
-            }
-            assert_eq!(raw_corner(w, 1).ok(), general, "{w:?}");
-        }
-        assert!(plain > 1000, "the fast reading answered only {plain} times");
-    }
 
     /// Plain text read word by word (`read_plain`) reads as the general way reads it: the
     /// same numbers, corners and statements, and the same first problem at the same line,
@@ -716,7 +643,10 @@ mod tests {
             uvs: Vec::new(),
             normals: Vec::new(),
             corners: Vec::new(),
+            faces: Vec::new(),
             statements: Vec::new(),
+            defined_before: [50, 50, 50],
+            face: Vec::new(),
             error: None,
             lines: 0,
         };
@@ -746,6 +676,7 @@ mod tests {
             assert_eq!(plain.uvs, general.uvs, "{text:?}");
             assert_eq!(plain.normals, general.normals, "{text:?}");
             assert_eq!(plain.corners, general.corners, "{text:?}");
+            assert_eq!(plain.faces, general.faces, "{text:?}");
             assert_eq!(plain.statements, general.statements, "{text:?}");
         }
         // Both kinds of text were met often.
@@ -766,7 +697,7 @@ mod tests {
         }
         // A no-break space ends a number the general way (it is trimmed), as it must.
         let text = "v 1 2 3\u{a0}\n";
-        let piece = read_piece(text, &count_faces(text, usize::MAX));
+        let piece = read_piece(text, &count_faces(text, usize::MAX), [0; 3]);
         assert_eq!(piece.error, None);
         assert_eq!(piece.positions, vec![Vec3::new(1.0, 2.0, 3.0)]);
     }
