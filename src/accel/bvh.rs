@@ -3,8 +3,8 @@
 //! Embree's BVH4 does). On the seed scene this replaces about nine scalar box tests per
 //! ray with two or three node tests.
 
-pub use super::bvh_build::LeafCost;
 use super::bvh_build::{BinaryBvh, MAX_DEPTH};
+pub use super::bvh_build::{Coincident, LeafCost};
 use crate::geometry::{Aabb, RayQuery};
 use crate::numerics::gamma;
 use crate::simd::F32x4;
@@ -240,41 +240,6 @@ pub struct Bvh {
     pub coincident: Coincident,
 }
 
-/// The largest group of primitives whose boxes share one centre.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Coincident {
-    /// How many.
-    pub count: u32,
-    /// The first of them, in stored order.
-    pub first: u32,
-}
-
-impl Coincident {
-    /// The largest group in `order`, the order the build stored primitives of `bounds` in.
-    /// Primitives of one centre fall on one side of every split, so they are stored side
-    /// by side: the longest run of one centre is the largest group.
-    fn of(bounds: &[Aabb], order: &[u32]) -> Coincident {
-        let centre = |i: u32| {
-            let b = &bounds[i as usize];
-            (Vec3A::from(b.min) + Vec3A::from(b.max)) * 0.5
-        };
-        let mut best = Coincident::default();
-        let mut start = 0;
-        for k in 1..=order.len() {
-            if k == order.len() || centre(order[k]) != centre(order[start]) {
-                if (k - start) as u32 > best.count {
-                    best = Coincident {
-                        count: (k - start) as u32,
-                        first: start as u32,
-                    };
-                }
-                start = k;
-            }
-        }
-        best
-    }
-}
-
 impl Bvh {
     /// Builds over primitives with the given bounds; returns the tree and the order in
     /// which the primitives must be stored (leaf ranges index into that order).
@@ -284,11 +249,11 @@ impl Bvh {
 
     /// Builds as `build` does, for leaves whose primitives are tested as `leaf` says.
     pub fn build_for(bounds: &[Aabb], leaf: LeafCost) -> (Bvh, Vec<u32>) {
-        let (binary, order) = BinaryBvh::build(bounds, leaf);
+        let (binary, order, coincident) = BinaryBvh::build(bounds, leaf);
         let mut bvh = Bvh {
             nodes: Vec::with_capacity(binary.nodes.len() / 2 + 1),
             bounds: binary.nodes.first().map(|n| n.bounds),
-            coincident: Coincident::of(bounds, &order),
+            coincident,
         };
         if !binary.nodes.is_empty() {
             bvh.collapse(&binary, 0);

@@ -129,10 +129,42 @@ const UNUSED: BinaryNode = BinaryNode {
     count: 0,
 };
 
+/// The largest group of primitives whose boxes share one centre.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Coincident {
+    /// How many.
+    pub count: u32,
+    /// The first of them, in stored order.
+    pub first: u32,
+}
+
+impl Coincident {
+    /// The largest group among `items` in the order the build stored them. Primitives of
+    /// one centre fall on one side of every split, so they are stored side by side: the
+    /// longest run of one centre is the largest group.
+    fn of(items: &[BuildItem]) -> Coincident {
+        let mut best = Coincident::default();
+        let mut start = 0;
+        for k in 1..=items.len() {
+            if k == items.len() || items[k].centroid() != items[start].centroid() {
+                if (k - start) as u32 > best.count {
+                    best = Coincident {
+                        count: (k - start) as u32,
+                        first: start as u32,
+                    };
+                }
+                start = k;
+            }
+        }
+        best
+    }
+}
+
 impl BinaryBvh {
-    /// Builds over primitives with the given bounds; returns the tree and the order in
-    /// which the primitives must be stored (leaf ranges index into that order).
-    pub fn build(bounds: &[Aabb], leaf: LeafCost) -> (BinaryBvh, Vec<u32>) {
+    /// Builds over primitives with the given bounds; returns the tree, the order in which
+    /// the primitives must be stored (leaf ranges index into that order) and their largest
+    /// group of one centre.
+    pub fn build(bounds: &[Aabb], leaf: LeafCost) -> (BinaryBvh, Vec<u32>, Coincident) {
         use rayon::prelude::*;
         let mut items: Vec<BuildItem> = bounds
             .par_iter()
@@ -143,7 +175,7 @@ impl BinaryBvh {
             .collect();
         let mut order: Vec<u32> = (0..bounds.len() as u32).into_par_iter().collect();
         if items.is_empty() {
-            return (BinaryBvh::default(), Vec::new());
+            return (BinaryBvh::default(), Vec::new(), Coincident::default());
         }
         let around = Around::of_many(&items);
         let at = Place {
@@ -154,7 +186,8 @@ impl BinaryBvh {
         let mut nodes = Vec::with_capacity(1 + tree.len_below());
         nodes.push(UNUSED);
         nodes[0] = tree.place(&mut nodes);
-        (BinaryBvh { nodes }, order)
+        // The items are in stored order now, side by side in memory.
+        (BinaryBvh { nodes }, order, Coincident::of(&items))
     }
 }
 
@@ -646,7 +679,7 @@ mod tests {
         // Below and far above the size at which subtrees go to other threads.
         for n in [1, 2, 9, 100, 3 * PARALLEL_MIN] {
             let bounds = boxes(n);
-            let (bvh, order) = BinaryBvh::build(&bounds, LeafCost::SINGLE);
+            let (bvh, order, _) = BinaryBvh::build(&bounds, LeafCost::SINGLE);
             assert_eq!(order.len(), n);
             let mut seen = vec![false; n];
             let visited = check(&bounds, &bvh, &order, 0, &mut seen);
@@ -769,13 +802,15 @@ mod tests {
     #[test]
     fn the_tree_does_not_depend_on_the_threads() {
         let bounds = boxes(4 * PARALLEL_MIN);
-        let (a, order_a) = BinaryBvh::build(&bounds, LeafCost::SINGLE);
+        let (a, order_a, coincident_a) = BinaryBvh::build(&bounds, LeafCost::SINGLE);
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(1)
             .build()
             .unwrap();
-        let (b, order_b) = pool.install(|| BinaryBvh::build(&bounds, LeafCost::SINGLE));
+        let (b, order_b, coincident_b) =
+            pool.install(|| BinaryBvh::build(&bounds, LeafCost::SINGLE));
         assert_eq!(order_a, order_b);
+        assert_eq!(coincident_a, coincident_b);
         assert_eq!(a.nodes.len(), b.nodes.len());
         for (x, y) in a.nodes.iter().zip(&b.nodes) {
             assert_eq!((x.bounds, x.first, x.count), (y.bounds, y.first, y.count));

@@ -35,15 +35,16 @@ pub enum Model {
 }
 
 impl Model {
-    /// The model of `mesh`, with the hierarchy over its triangles built.
-    pub fn mesh(mut mesh: Mesh) -> Self {
+    /// The model of `mesh` (a copy, its triangles in the hierarchy's order), with the
+    /// hierarchy over its triangles built.
+    pub fn mesh(mesh: &Mesh) -> Self {
         use rayon::prelude::*;
         let bounds: Vec<Aabb> = (0..mesh.triangle_count() as u32)
             .into_par_iter()
             .map(|i| mesh.triangle_bounds(i))
             .collect();
         let (mut bvh, order) = Bvh::build_for(&bounds, GROUPED);
-        mesh.reorder(&order);
+        let mesh = mesh.reordered(&order);
         // Each leaf's triangles become groups of up to four, numbered in leaf order: the
         // numbering is cheap and in order, the groups are made in parallel after.
         let mut spans: Vec<(u32, u32)> =
@@ -347,7 +348,7 @@ mod tests {
     #[test]
     fn mesh_hits_match_brute_force() {
         let mesh = unit_cube_mesh().subdivided().subdivided();
-        let model = Model::mesh(mesh.clone());
+        let model = Model::mesh(&mesh);
         let Model::Mesh { mesh: stored, .. } = &model else {
             unreachable!()
         };
@@ -377,7 +378,7 @@ mod tests {
     #[test]
     fn a_meshs_leaves_hold_its_triangles_in_groups_once() {
         use super::super::bvh::Child;
-        let model = Model::mesh(unit_cube_mesh().subdivided().subdivided().subdivided());
+        let model = Model::mesh(&unit_cube_mesh().subdivided().subdivided().subdivided());
         let Model::Mesh { mesh, bvh, groups } = &model else {
             unreachable!()
         };
@@ -414,7 +415,7 @@ mod tests {
     /// (`identity`); it finds what carrying them finds, with an error bound no wider.
     #[test]
     fn an_unplaced_instance_finds_what_a_placed_one_does() {
-        let model = Arc::new(Model::mesh(unit_cube_mesh().subdivided()));
+        let model = Arc::new(Model::mesh(&unit_cube_mesh().subdivided()));
         let identity = Transform::new(glam::Affine3A::IDENTITY).unwrap();
         let fast = Instance::new(model.clone(), identity);
         assert!(fast.identity);

@@ -123,9 +123,9 @@ pub fn run(cfg: Config) -> Result<()> {
         black_box(parse_obj(&big_obj, usize::MAX, true).expect("the subdivided bunny"));
     });
     let build = median(cfg.runs, || {
-        black_box(Model::mesh(big.clone()));
+        black_box(Model::mesh(&big));
     });
-    let model = Model::mesh(big.clone());
+    let model = Model::mesh(&big);
     let per_triangle = model.index_bytes() as f64 / triangles as f64;
 
     let small_scene = bunny_scene(BUNNY, 1)?;

@@ -314,7 +314,7 @@ fn mesh_rows(cfg: &Config, dir: &Path, rows: &mut Vec<Row>) -> Result<()> {
         median(cfg.runs, || {
             let parsed = parse_obj(&fine_obj, usize::MAX, true).expect("the subdivided bunny");
             for part in parsed.parts {
-                black_box(Model::mesh(part.mesh));
+                black_box(Model::mesh(&part.mesh));
             }
         })
     });
@@ -329,7 +329,7 @@ fn mesh_rows(cfg: &Config, dir: &Path, rows: &mut Vec<Row>) -> Result<()> {
         }
         Err(why) => why.clone(),
     };
-    let model = Model::mesh(fine.clone());
+    let model = Model::mesh(&fine);
     rows.push(Row {
         what: format!("loading and building {triangles} triangles from OBJ text, 2 threads"),
         prism: format!(

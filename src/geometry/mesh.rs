@@ -191,15 +191,20 @@ impl Mesh {
             .fold(Aabb::EMPTY, |b, &p| b.grow(p.into()))
     }
 
-    /// Stores the triangles in `order` (a permutation of their indices): the order of
-    /// the hierarchy's leaves.
-    pub fn reorder(&mut self, order: &[u32]) {
+    /// A copy with the triangles in `order` (a permutation of their indices): the order
+    /// of the hierarchy's leaves. Gathered straight from this mesh, not copied first.
+    pub fn reordered(&self, order: &[u32]) -> Mesh {
         use rayon::prelude::*;
         debug_assert_eq!(order.len(), self.triangles.len());
-        self.triangles = order
-            .par_iter()
-            .map(|&i| self.triangles[i as usize])
-            .collect();
+        Mesh {
+            positions: self.positions.clone(),
+            normals: self.normals.clone(),
+            uvs: self.uvs.clone(),
+            triangles: order
+                .par_iter()
+                .map(|&i| self.triangles[i as usize])
+                .collect(),
+        }
     }
 
     /// The watertight test of triangle `i`: its hit with t in (t_min, t_max).

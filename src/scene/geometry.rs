@@ -322,7 +322,7 @@ impl Geometry {
                 ShapeDesc::Mesh { mesh, transform } => {
                     let model = models
                         .entry(Arc::as_ptr(mesh))
-                        .or_insert_with(|| Arc::new(Model::mesh(Mesh::clone(mesh))));
+                        .or_insert_with(|| Arc::new(Model::mesh(mesh)));
                     push_surface(Surface::Instance(Arc::new(Instance::new(
                         model.clone(),
                         *transform,
