@@ -65,13 +65,25 @@ impl Mesh {
             return Err(MeshError::IndexOutOfRange(bad));
         }
         let positions: Vec<Vec3A> = positions.into_iter().map(Vec3A::from).collect();
-        let triangles: Vec<[u32; 3]> = triangles
-            .into_iter()
-            .filter(|t| {
-                let [a, b, c] = t.map(|i| Vec3::from(positions[i as usize]));
-                crate::numerics::try_normalize((b - a).cross(c - a)).is_some()
-            })
-            .collect();
+        let has_area = |t: &[u32; 3]| {
+            let [a, b, c] = t.map(|i| Vec3::from(positions[i as usize]));
+            crate::numerics::try_normalize((b - a).cross(c - a)).is_some()
+        };
+        // The test on all threads; the list copied without the triangles that fail it only
+        // where there are such (rayon's order-keeping filter would collect through lists).
+        let kept: Vec<bool> = {
+            use rayon::prelude::*;
+            triangles.par_iter().map(has_area).collect()
+        };
+        let triangles: Vec<[u32; 3]> = if kept.iter().all(|&k| k) {
+            triangles
+        } else {
+            triangles
+                .into_iter()
+                .zip(kept)
+                .filter_map(|(t, keep)| keep.then_some(t))
+                .collect()
+        };
         if triangles.is_empty() {
             return Err(MeshError::NoTriangles);
         }

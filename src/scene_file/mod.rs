@@ -35,6 +35,7 @@ mod obj;
 mod obj_corner;
 mod obj_join;
 mod obj_text;
+mod obj_vertices;
 mod parse_tree;
 mod placement;
 mod read_cache;

@@ -5,14 +5,13 @@
 //! line is reported by its number.
 
 pub use super::line_error::LineError;
-use super::obj_corner::{Corner, NONE};
 use super::obj_join::{Outline, PartBuilder};
 use super::obj_text::{
     Piece, cut_at_lines, read_piece, refuse_oversized_faces, without_byte_order_mark,
 };
+use super::obj_vertices::Vertices;
 use crate::geometry::{Mesh, MeshError};
 use glam::{Vec2, Vec3};
-use std::collections::HashMap;
 
 /// The triangles of an OBJ file that use one material, as a mesh.
 #[derive(Clone, Debug, PartialEq)]
@@ -106,59 +105,12 @@ fn build_part(
     normals: &[Vec3],
     smooth: bool,
 ) -> Result<ObjPart, LineError> {
-    use rayon::prelude::*;
-    let every_corner =
-        |has: fn(&Corner) -> bool| part.triangles.par_iter().all(|t| t.iter().all(has));
-    let all_uv = every_corner(|c| c[1] != NONE);
-    let all_normals = every_corner(|c| c[2] != NONE);
-    // A key of the position alone is the same as the first corner's there.
-    let by_position = !all_uv && !all_normals;
-    let key = |c: &Corner| -> Corner {
-        [
-            c[0],
-            if all_uv { c[1] } else { NONE },
-            if all_normals { c[2] } else { NONE },
-        ]
-    };
-    // Most positions make one vertex: the first corner at each position is found by a
-    // table indexed by position, and only corners that differ from it there (a seam of
-    // texture coordinates or normals) by a hash map.
-    let mut first_at: Vec<u32> = vec![u32::MAX; positions.len()];
-    let mut keys: Vec<Corner> = Vec::new();
-    let mut others: HashMap<Corner, u32> = HashMap::new();
-    // At least a vertex per position used, as a rule; seams add a few more.
-    let capacity = |all: bool| if all { positions.len() } else { 0 };
-    let mut p_out = Vec::with_capacity(positions.len());
-    let mut uv_out = Vec::with_capacity(capacity(all_uv));
-    let mut n_out = Vec::with_capacity(capacity(all_normals));
-    let mut triangles = Vec::with_capacity(part.triangles.len());
-    for tri in &part.triangles {
-        triangles.push(tri.map(|c| {
-            let k = key(&c);
-            let first = first_at[k[0] as usize];
-            if first != u32::MAX && (by_position || keys[first as usize] == k) {
-                return first;
-            }
-            let mut add = || {
-                p_out.push(positions[k[0] as usize]);
-                if k[1] != NONE {
-                    uv_out.push(uvs[k[1] as usize]);
-                }
-                if k[2] != NONE {
-                    n_out.push(normals[k[2] as usize]);
-                }
-                keys.push(k);
-                (p_out.len() - 1) as u32
-            };
-            if first == u32::MAX {
-                let v = add();
-                first_at[k[0] as usize] = v;
-                v
-            } else {
-                *others.entry(k).or_insert_with(add)
-            }
-        }));
-    }
+    let Vertices {
+        positions: p_out,
+        uvs: uv_out,
+        normals: n_out,
+        triangles,
+    } = Vertices::of(&part.triangles, positions, uvs, normals);
     let mesh = Mesh::new(p_out, n_out, uv_out, triangles).map_err(|e| LineError {
         line: part.line,
         message: match e {
