@@ -3,8 +3,9 @@
 //! Embree's BVH4 does). On the seed scene this replaces about nine scalar box tests per
 //! ray with two or three node tests.
 
+pub use super::bvh_bins::LeafCost;
+pub use super::bvh_build::Coincident;
 use super::bvh_build::{BinaryBvh, MAX_DEPTH};
-pub use super::bvh_build::{Coincident, LeafCost};
 use crate::geometry::{Aabb, RayQuery};
 use crate::numerics::gamma;
 use crate::simd::F32x4;
@@ -250,15 +251,21 @@ impl Bvh {
     /// Builds as `build` does, for leaves whose primitives are tested as `leaf` says.
     pub fn build_for(bounds: &[Aabb], leaf: LeafCost) -> (Bvh, Vec<u32>) {
         let (binary, order, coincident) = BinaryBvh::build(bounds, leaf);
+        (Bvh::collapsed(&binary, coincident), order)
+    }
+
+    /// The four-wide tree of a binary one (`coincident` is its largest group of one
+    /// centre).
+    pub fn collapsed(binary: &BinaryBvh, coincident: Coincident) -> Bvh {
         let mut bvh = Bvh {
             nodes: Vec::with_capacity(binary.nodes.len() / 2 + 1),
             bounds: binary.nodes.first().map(|n| n.bounds),
             coincident,
         };
         if !binary.nodes.is_empty() {
-            bvh.collapse(&binary, 0);
+            bvh.collapse(binary, 0);
         }
-        (bvh, order)
+        bvh
     }
 
     /// One leaf holding primitives 0..count: the unoptimised list, for comparisons.

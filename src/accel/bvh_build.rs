@@ -1,11 +1,13 @@
 //! The binned surface area heuristic build (Wald 2007) of a binary hierarchy, which
 //! `bvh.rs` then collapses into four-wide nodes for traversal.
 //!
-//! Each node makes two passes over its primitives: the bins of all three axes at once, and
-//! the partition, which also gathers each side's boxes and centroids. The two halves of a
-//! large split are built on two threads without sharing anything, and the tree is laid
-//! out after, so it is the same whichever thread builds what.
+//! Each node makes two passes over its primitives: the bins of all three axes at once
+//! (`bvh_bins.rs`, which also chooses the split), and the partition, which also gathers
+//! each side's boxes and centroids. The two halves of a large split are built on two
+//! threads without sharing anything, and the tree is laid out after, so it is the same
+//! whichever thread builds what.
 
+use super::bvh_bins::{BINS, BinSets, Bounds, BuildItem, LeafCost, below_split, best_split};
 use crate::geometry::Aabb;
 use glam::Vec3A;
 
@@ -26,101 +28,12 @@ pub struct BinaryBvh {
     pub nodes: Vec<BinaryNode>,
 }
 
-const BINS: usize = 12;
-/// Cost of a box test relative to a primitive test, for the SAH.
-const TRAVERSAL_COST: f32 = 1.0;
-
-/// How a leaf's primitives are tested, for the SAH: `group` at a time, each group counted
-/// as one test (a mesh's four triangles in SIMD lanes), and at most `max` in one leaf.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct LeafCost {
-    pub group: usize,
-    pub max: usize,
-}
-
-impl LeafCost {
-    /// One primitive at a time: the scene's objects.
-    pub const SINGLE: LeafCost = LeafCost { group: 1, max: 8 };
-
-    /// What testing `n` primitives costs, in primitive tests.
-    #[inline(always)]
-    fn of(self, n: usize) -> f32 {
-        // The widths used, spelled out so that each divides by a constant: the sweep in
-        // `best_split` asks this twice per candidate split, and a division by a width
-        // known only at run time takes tens of cycles.
-        match self.group {
-            1 => n as f32,
-            4 => n.div_ceil(4) as f32,
-            group => n.div_ceil(group) as f32,
-        }
-    }
-}
 /// Leaves deeper than this are not split further, however large: it bounds the traversal
 /// stack (bvh.rs), and 2^32 leaves are more than any scene has.
 pub const MAX_DEPTH: usize = 32;
 /// Subtrees of fewer primitives are built on the thread that split them: below this, the
 /// cost of handing work to another thread outweighs the work.
 const PARALLEL_MIN: usize = 8192;
-
-/// A primitive's box in SIMD lanes (the same values as its `Aabb`, so the tree is the same
-/// as one built from the boxes themselves). Its index travels in an array of its own, so
-/// the passes that only read boxes stream a third less memory.
-struct BuildItem {
-    min: Vec3A,
-    max: Vec3A,
-}
-
-impl BuildItem {
-    #[inline(always)]
-    fn centroid(&self) -> Vec3A {
-        (self.min + self.max) * 0.5
-    }
-}
-
-/// A box in SIMD lanes while it is grown.
-#[derive(Clone, Copy)]
-struct Bounds {
-    min: Vec3A,
-    max: Vec3A,
-}
-
-impl Bounds {
-    const EMPTY: Bounds = Bounds {
-        min: Vec3A::splat(f32::INFINITY),
-        max: Vec3A::splat(f32::NEG_INFINITY),
-    };
-
-    #[inline(always)]
-    fn union(self, it: &BuildItem) -> Bounds {
-        Bounds {
-            min: self.min.min(it.min),
-            max: self.max.max(it.max),
-        }
-    }
-
-    #[inline(always)]
-    fn merge(self, other: Bounds) -> Bounds {
-        Bounds {
-            min: self.min.min(other.min),
-            max: self.max.max(other.max),
-        }
-    }
-
-    #[inline(always)]
-    fn grow(self, p: Vec3A) -> Bounds {
-        Bounds {
-            min: self.min.min(p),
-            max: self.max.max(p),
-        }
-    }
-
-    fn aabb(self) -> Aabb {
-        Aabb {
-            min: self.min.into(),
-            max: self.max.into(),
-        }
-    }
-}
 
 /// A node slot before its node is written.
 const UNUSED: BinaryNode = BinaryNode {
@@ -183,11 +96,17 @@ impl BinaryBvh {
             depth: 0,
         };
         let tree = Subtree::build(&mut items, &mut order, around, at, leaf);
-        let mut nodes = Vec::with_capacity(1 + tree.len_below());
-        nodes.push(UNUSED);
-        nodes[0] = tree.place(&mut nodes);
-        // The items are in stored order now, side by side in memory.
-        (BinaryBvh { nodes }, order, Coincident::of(&items))
+        let (nodes, coincident) = rayon::join(
+            || {
+                let mut nodes = Vec::with_capacity(1 + tree.len_below());
+                nodes.push(UNUSED);
+                nodes[0] = tree.place(&mut nodes);
+                nodes
+            },
+            // The items are in stored order now, side by side in memory.
+            || Coincident::of(&items),
+        );
+        (BinaryBvh { nodes }, order, coincident)
     }
 }
 
@@ -291,13 +210,14 @@ impl Subtree {
         leaf_cost: LeafCost,
     ) -> Subtree {
         let n = items.len();
+        let mut bins = BinSets::new();
         if n < PARALLEL_MIN {
             let mut below = Vec::with_capacity(2 * n - 2);
-            let root = build_serial(items, order, around, at, leaf_cost, &mut below);
+            let root = build_serial(items, order, around, at, leaf_cost, &mut bins, &mut below);
             return Subtree::Serial { root, below };
         }
         let Some((mid, left_around, right_around)) =
-            split(items, order, around, at.depth, leaf_cost)
+            split(items, order, around, at.depth, leaf_cost, &mut bins)
         else {
             return Subtree::Serial {
                 root: leaf_over(around, at, n),
@@ -369,17 +289,20 @@ fn leaf_over(around: Around, at: Place, n: usize) -> BinaryNode {
 }
 
 /// The node over `items`, built on this thread, with its descendants appended to `below`:
-/// a child pair, then the left child's descendants, then the right child's.
+/// a child pair, then the left child's descendants, then the right child's. `bins` is
+/// this thread's space for binning, used by one node after another.
 fn build_serial(
     items: &mut [BuildItem],
     order: &mut [u32],
     around: Around,
     at: Place,
     leaf_cost: LeafCost,
+    bins: &mut BinSets,
     below: &mut Vec<BinaryNode>,
 ) -> BinaryNode {
     let n = items.len();
-    let Some((mid, left_around, right_around)) = split(items, order, around, at.depth, leaf_cost)
+    let Some((mid, left_around, right_around)) =
+        split(items, order, around, at.depth, leaf_cost, bins)
     else {
         return leaf_over(around, at, n);
     };
@@ -393,6 +316,7 @@ fn build_serial(
         left_around,
         at.left(),
         leaf_cost,
+        bins,
         below,
     );
     below[pair + 1] = build_serial(
@@ -401,6 +325,7 @@ fn build_serial(
         right_around,
         at.right_of(mid),
         leaf_cost,
+        bins,
         below,
     );
     BinaryNode {
@@ -419,6 +344,7 @@ fn split(
     around: Around,
     depth: usize,
     leaf_cost: LeafCost,
+    bins: &mut BinSets,
 ) -> Option<(usize, Around, Around)> {
     let n = items.len();
     // A leaf at the depth limit, however large, keeps traversal within its fixed stack.
@@ -427,7 +353,7 @@ fn split(
     }
     let (bounds, centroid_bounds) = (around.boxes.aabb(), around.centroids.aabb());
     let extent = centroid_bounds.max - centroid_bounds.min;
-    match best_split(items, &bounds, &centroid_bounds, leaf_cost) {
+    match best_split(items, &bounds, &centroid_bounds, leaf_cost, bins) {
         Some((cost, axis, split)) if cost < leaf_cost.of(n) || n > leaf_cost.max => {
             let scale = BINS as f32 / extent[axis];
             let min = centroid_bounds.min[axis];
@@ -443,159 +369,6 @@ fn split(
         }
         None => None,
     }
-}
-
-/// Every axis's bins: the box around the items in each, and how many.
-struct Bins {
-    bounds: [[Bounds; BINS]; 3],
-    count: [[usize; BINS]; 3],
-}
-
-impl Bins {
-    const EMPTY: Bins = Bins {
-        bounds: [[Bounds::EMPTY; BINS]; 3],
-        count: [[0; BINS]; 3],
-    };
-
-    /// The bins of `items` on every axis, in one pass; bin b of an axis holds the items
-    /// whose centroid c has `(c - low) * scale` in [b, b + 1) (the last bin also those
-    /// beyond). With `two_sets`, items take turns between two sets of bins, merged after:
-    /// neighbouring items often fall in one bin, and each would otherwise wait for the one
-    /// before it to be stored. A box's union and a count's sum do not depend on the order,
-    /// so the bins are the same either way.
-    fn of(items: &[BuildItem], low: Vec3A, scale: Vec3A, two_sets: bool) -> Bins {
-        let bin = |bins: &mut Bins, it: &BuildItem| {
-            let b = bin_index((it.centroid() - low) * scale);
-            for axis in 0..3 {
-                let b = b[axis] as usize;
-                bins.bounds[axis][b] = bins.bounds[axis][b].union(it);
-                bins.count[axis][b] += 1;
-            }
-        };
-        let mut all = Bins::EMPTY;
-        if !two_sets {
-            items.iter().for_each(|it| bin(&mut all, it));
-            return all;
-        }
-        let mut odd = Bins::EMPTY;
-        let pairs = items.chunks_exact(2);
-        if let [last] = pairs.remainder() {
-            bin(&mut all, last);
-        }
-        for pair in pairs {
-            bin(&mut all, &pair[0]);
-            bin(&mut odd, &pair[1]);
-        }
-        all.absorb(&odd);
-        all
-    }
-
-    fn absorb(&mut self, other: &Bins) {
-        for axis in 0..3 {
-            for b in 0..BINS {
-                self.bounds[axis][b] = self.bounds[axis][b].merge(other.bounds[axis][b]);
-                self.count[axis][b] += other.count[axis][b];
-            }
-        }
-    }
-}
-
-/// Each axis's bin for x = (c − low) · scale: `min(x as u32, BINS − 1)`, where x is never
-/// negative, and NaN (0 · ∞ on an extent so thin that its scale overflows) is bin 0. The
-/// lanes are clamped to [0, BINS − 1] first (`max` gives 0 for NaN), so that truncating
-/// all three at once gives exactly what the saturating conversion would.
-#[inline(always)]
-fn bin_index(x: Vec3A) -> [u32; 3] {
-    let clamped = x.max(Vec3A::ZERO).min(Vec3A::splat((BINS - 1) as f32));
-    #[cfg(target_arch = "x86_64")]
-    {
-        use std::arch::x86_64::{__m128, __m128i, _mm_cvttps_epi32};
-        // SAFETY: SSE2 is part of the x86-64 baseline; the lanes are in [0, BINS − 1].
-        let lanes: [u32; 4] = unsafe {
-            std::mem::transmute::<__m128i, [u32; 4]>(_mm_cvttps_epi32(__m128::from(clamped)))
-        };
-        [lanes[0], lanes[1], lanes[2]]
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    {
-        clamped.as_uvec3().to_array()
-    }
-}
-
-/// Nodes of at least this many items are binned into two sets of bins (`Bins::of`);
-/// below it, clearing and merging a second set costs more than it saves.
-const TWO_BIN_SETS_MIN: usize = 64;
-
-/// The cheapest split by the SAH among every axis's bin boundaries, as (cost, axis, the
-/// first bin on the right); None when all centroids coincide.
-fn best_split(
-    items: &[BuildItem],
-    bounds: &Aabb,
-    centroid_bounds: &Aabb,
-    leaf: LeafCost,
-) -> Option<(f32, usize, usize)> {
-    let extent = centroid_bounds.max - centroid_bounds.min;
-    let extent_a = Vec3A::from(extent);
-    let scale = Vec3A::select(
-        extent_a.cmpgt(Vec3A::ZERO),
-        Vec3A::splat(BINS as f32) / extent_a,
-        Vec3A::ZERO,
-    );
-    let low = Vec3A::from(centroid_bounds.min);
-    let Bins {
-        bounds: bins,
-        count: bin_count,
-    } = Bins::of(items, low, scale, items.len() >= TWO_BIN_SETS_MIN);
-    let mut best: Option<(f32, usize, usize)> = None;
-    let parent_area = bounds.half_area().max(f32::MIN_POSITIVE);
-    for axis in 0..3 {
-        if extent[axis] <= 0.0 {
-            continue;
-        }
-        let (bins, counts) = (&bins[axis], &bin_count[axis]);
-        // Only boundaries just past a non-empty bin can be best: past an empty one, both
-        // sides hold what they held one boundary before, at the same cost, and the first
-        // of equal costs wins. A small node has few non-empty bins, so this is most of
-        // the work saved where most nodes are.
-        let mut full = [0usize; BINS];
-        let mut k = 0;
-        // Without a branch: whether a bin is empty is as good as random.
-        for (b, &count) in counts.iter().enumerate() {
-            full[k] = b;
-            k += (count > 0) as usize;
-        }
-        // Sweep from the right to know the cost of every right-hand side.
-        let mut right_area = [0.0f32; BINS];
-        let mut right_count = [0usize; BINS];
-        let (mut acc, mut cnt) = (Bounds::EMPTY, 0);
-        for j in (1..k).rev() {
-            acc = acc.merge(bins[full[j]]);
-            cnt += counts[full[j]];
-            right_area[j] = acc.aabb().half_area();
-            right_count[j] = cnt;
-        }
-        let (mut acc, mut cnt) = (Bounds::EMPTY, 0);
-        for j in 1..k {
-            acc = acc.merge(bins[full[j - 1]]);
-            cnt += counts[full[j - 1]];
-            let cost = TRAVERSAL_COST
-                + (acc.aabb().half_area() * leaf.of(cnt) + right_area[j] * leaf.of(right_count[j]))
-                    / parent_area;
-            if best.is_none_or(|(c, _, _)| cost < c) {
-                best = Some((cost, axis, full[j - 1] + 1));
-            }
-        }
-    }
-    best
-}
-
-/// Whether an item at `x` = (c − min) · scale along the split axis (never negative) falls
-/// in a bin below `split` (< BINS): whether `min(x as usize, BINS − 1) < split`, which is
-/// `x < split`, and true for x = NaN (0 · ∞ on an extent so thin that its scale overflows),
-/// whose bin is 0. Compared without converting x, once per item per level.
-#[inline(always)]
-fn below_split(x: f32, split: usize) -> bool {
-    x < split as f32 || x.is_nan()
 }
 
 /// Moves the items whose centroid `left` accepts to the front; returns how many there
@@ -686,85 +459,6 @@ mod tests {
             assert!(seen.iter().all(|&s| s), "n = {n}");
             // The tree holds no slot that no node uses (each visited once: a tree).
             assert_eq!(visited, bvh.nodes.len(), "n = {n}");
-        }
-    }
-
-    /// Places along an axis, in bins, that the binning meets and the hard ones: each bin
-    /// boundary and its neighbouring floats, tiny and huge values, infinity and NaN.
-    fn places_to_bin() -> Vec<f32> {
-        let mut xs = vec![0.0, f32::MIN_POSITIVE, 1e-30, f32::INFINITY, f32::NAN, 1e30];
-        for k in 0..=BINS + 1 {
-            let at = k as f32;
-            xs.extend([at, at.next_down(), at.next_up(), at + 0.5]);
-        }
-        xs
-    }
-
-    /// The split test compares without converting, and agrees with the bin index the
-    /// binning computed, at and around every boundary and at the odd values.
-    #[test]
-    fn the_split_test_agrees_with_the_bins() {
-        let bin = |x: f32| (x as usize).min(BINS - 1);
-        for x in places_to_bin() {
-            for split in 1..BINS {
-                assert_eq!(
-                    below_split(x, split),
-                    bin(x) < split,
-                    "x = {x}, split {split}"
-                );
-            }
-        }
-    }
-
-    /// The three lanes' bins at once are the saturating conversion's, lane by lane.
-    #[test]
-    fn bin_indices_are_the_saturating_conversions() {
-        let reference = |x: f32| (x as u32).min(BINS as u32 - 1);
-        let xs = places_to_bin();
-        for &x in &xs {
-            for &y in &xs {
-                let z = xs[(x as usize + 3) % xs.len()];
-                let got = bin_index(Vec3A::new(x, y, z));
-                assert_eq!(
-                    got,
-                    [reference(x), reference(y), reference(z)],
-                    "{x} {y} {z}"
-                );
-            }
-        }
-        let got = bin_index(Vec3A::new(f32::NAN, f32::INFINITY, 11.5));
-        assert_eq!(got, [0, BINS as u32 - 1, BINS as u32 - 1]);
-    }
-
-    /// Two sets of bins merged hold what one set holds, bit for bit, for odd and even
-    /// numbers of items.
-    #[test]
-    fn two_sets_of_bins_hold_what_one_holds() {
-        for n in [1, 2, 63, 64, 65, 1000, 1001] {
-            let items: Vec<BuildItem> = boxes(n)
-                .iter()
-                .map(|b| BuildItem {
-                    min: b.min.into(),
-                    max: b.max.into(),
-                })
-                .collect();
-            let around = Around::of(&items).centroids;
-            let extent = around.max - around.min;
-            let scale = Vec3A::splat(BINS as f32) / extent.max(Vec3A::splat(1e-6));
-            let one = Bins::of(&items, around.min, scale, false);
-            let two = Bins::of(&items, around.min, scale, true);
-            assert_eq!(one.count, two.count, "n = {n}");
-            for axis in 0..3 {
-                for b in 0..BINS {
-                    let (p, q) = (one.bounds[axis][b], two.bounds[axis][b]);
-                    assert_eq!(
-                        (p.min.to_array(), p.max.to_array()),
-                        (q.min.to_array(), q.max.to_array()),
-                        "n = {n}, axis {axis}, bin {b}"
-                    );
-                }
-            }
-            assert_eq!(one.count.iter().flatten().sum::<usize>(), 3 * n);
         }
     }
 

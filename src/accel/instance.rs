@@ -4,6 +4,7 @@
 //! distances along it mean the same in both spaces.
 
 use super::bvh::{Bvh, LeafCost};
+use super::bvh_build::BinaryBvh;
 use crate::geometry::{
     Aabb, GROUP_WIDTH, GroupRay, HitDetail, Mesh, Ray, RayQuery, Shape, ShapeHit, SurfacePoint,
     Transform, TriangleGroup, UvFrame,
@@ -43,8 +44,12 @@ impl Model {
             .into_par_iter()
             .map(|i| mesh.triangle_bounds(i))
             .collect();
-        let (mut bvh, order) = Bvh::build_for(&bounds, GROUPED);
-        let mesh = mesh.reordered(&order);
+        let (binary, order, coincident) = BinaryBvh::build(&bounds, GROUPED);
+        // The wide tree and the triangles in the tree's order are made side by side.
+        let (mut bvh, mesh) = rayon::join(
+            || Bvh::collapsed(&binary, coincident),
+            || mesh.reordered(&order),
+        );
         // Each leaf's triangles become groups of up to four, numbered in leaf order: the
         // numbering is cheap and in order, the groups are made in parallel after.
         let mut spans: Vec<(u32, u32)> =

@@ -16,6 +16,7 @@
 //! ```
 
 mod bvh;
+mod bvh_bins;
 mod bvh_build;
 mod csg;
 mod csg_members;
