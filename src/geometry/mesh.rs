@@ -10,6 +10,10 @@ use super::uv_frame::UvFrame;
 use glam::{Vec2, Vec3, Vec3A};
 use std::collections::HashMap;
 
+/// Meshes of fewer vertices sum their normals on one thread (`Mesh::area_weighted_normals`):
+/// each further thread passes over all the faces.
+const PARALLEL_NORMALS_MIN: usize = 1 << 15;
+
 /// A triangle mesh. Every triangle has area (degenerate ones are dropped when the mesh is
 /// made), and every index is in range.
 #[derive(Clone, Debug, PartialEq)]
@@ -130,17 +134,36 @@ impl Mesh {
     /// Each vertex's normal as the sum of its faces' cross products (each as long as twice
     /// the face's area), normalised; a vertex of no face gets +y.
     fn area_weighted_normals(&self) -> Vec<Vec3A> {
+        use rayon::prelude::*;
         let mut sums = vec![Vec3A::ZERO; self.positions.len()];
-        for t in &self.triangles {
-            let [a, b, c] = t.map(|i| self.positions[i as usize]);
-            let n = (b - a).cross(c - a);
-            for &i in t {
-                sums[i as usize] += n;
-            }
-        }
-        sums.into_iter()
-            .map(|n| n.try_normalize().unwrap_or(Vec3A::Y))
-            .collect()
+        // The vertices are cut into one range per thread, and each thread passes over all
+        // the faces, adding only to its own range: each vertex sums its faces in the
+        // faces' order, as one pass would, so the sums are the same bit for bit.
+        let range_len = sums
+            .len()
+            .div_ceil(rayon::current_num_threads())
+            .max(PARALLEL_NORMALS_MIN);
+        sums.par_chunks_mut(range_len)
+            .enumerate()
+            .for_each(|(k, sums)| {
+                let start = (k * range_len) as u32;
+                let len = sums.len() as u32;
+                for t in &self.triangles {
+                    if t.iter().all(|&i| i.wrapping_sub(start) >= len) {
+                        continue;
+                    }
+                    let [a, b, c] = t.map(|i| self.positions[i as usize]);
+                    let n = (b - a).cross(c - a);
+                    for &i in t {
+                        if let Some(sum) = sums.get_mut(i.wrapping_sub(start) as usize) {
+                            *sum += n;
+                        }
+                    }
+                }
+            });
+        sums.par_iter_mut()
+            .for_each(|n| *n = n.try_normalize().unwrap_or(Vec3A::Y));
+        sums
     }
 
     /// The number of triangles.
@@ -460,6 +483,46 @@ mod tests {
         assert_eq!(s.shading, Vec3A::Z);
         let (u, v) = mesh.uv(i, hit.b);
         assert!((u - 0.25).abs() < 1e-6 && (v - 0.75).abs() < 1e-6);
+    }
+
+    /// Normals summed on several threads are those of one thread, bit for bit, on a mesh
+    /// large enough to be summed in ranges, with its faces in scattered order so that
+    /// faces cross the ranges.
+    #[test]
+    fn normals_on_several_threads_are_those_of_one() {
+        let side = 260u32;
+        assert!((side * side) as usize > 2 * PARALLEL_NORMALS_MIN);
+        let positions: Vec<Vec3> = (0..side * side)
+            .map(|k| {
+                let (x, z) = ((k % side) as f32, (k / side) as f32);
+                Vec3::new(x * 0.1, (x * 0.37).sin() * (z * 0.23).cos(), z * 0.1)
+            })
+            .collect();
+        let mut triangles = Vec::new();
+        for z in 0..side - 1 {
+            for x in 0..side - 1 {
+                let k = z * side + x;
+                triangles.push([k, k + side, k + 1]);
+                triangles.push([k + 1, k + side, k + side + 1]);
+            }
+        }
+        // A fixed scattering of the faces (a multiplicative step prime to their number).
+        let n = triangles.len();
+        let triangles: Vec<[u32; 3]> = (0..n).map(|k| triangles[k * 7919 % n]).collect();
+        let normals_on = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let mesh = Mesh::new(positions.clone(), Vec::new(), Vec::new(), triangles.clone());
+            pool.install(|| mesh.unwrap().smooth().normals)
+        };
+        let bits = |v: Vec<Vec3A>| -> Vec<[u32; 3]> {
+            v.iter().map(|n| n.to_array().map(f32::to_bits)).collect()
+        };
+        let one = bits(normals_on(1));
+        assert_eq!(one, bits(normals_on(2)));
+        assert_eq!(one, bits(normals_on(3)));
     }
 
     /// The area-weighted normal at a vertex shared by faces at right angles bisects them;

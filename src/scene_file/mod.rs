@@ -34,6 +34,7 @@ mod mtl;
 mod obj;
 mod obj_corner;
 mod obj_join;
+mod obj_number;
 mod obj_text;
 mod obj_vertices;
 mod parse_tree;

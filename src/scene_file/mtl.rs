@@ -3,7 +3,8 @@
 //! mapping to prism's materials is meshes.rs's).
 
 use super::line_error::LineError;
-use super::obj_text::{numbers, rest_of, statements, without_byte_order_mark};
+use super::obj_number::numbers;
+use super::obj_text::{rest_of, statements, without_byte_order_mark};
 use std::collections::HashMap;
 
 /// A material as an MTL file gives it: the statements prism maps, as written.

@@ -66,6 +66,7 @@ fn parse_pieces(
         .collect();
     let pieces: Vec<Piece> = chunks
         .into_par_iter()
+        .with_max_len(1) // each piece handed out alone (`PIECES_PER_THREAD`)
         .zip(counts)
         .zip(defined_before)
         .map(|((chunk, count), before)| read_piece(chunk, &count, before))

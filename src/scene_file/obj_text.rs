@@ -6,6 +6,7 @@
 
 use super::line_error::LineError;
 use super::obj_corner::{Corner, RawCorner, raw_corner, resolve};
+use super::obj_number::numbers;
 use crate::limits;
 use glam::{Vec2, Vec3};
 
@@ -13,10 +14,16 @@ use glam::{Vec2, Vec3};
 /// at least this large (smaller pieces would cost more to hand out than to read).
 pub(super) const PARALLEL_PIECE_BYTES: usize = 1 << 20;
 
+/// How many pieces per thread large text is cut into at most. Lines of faces take longer
+/// to read than lines of vertices, and a file holds them in long runs, so pieces of equal
+/// size are not equal work: many pieces, each handed out alone, keep every thread busy to
+/// the end.
+const PIECES_PER_THREAD: usize = 16;
+
 /// `text` cut after line ends into pieces of about equal size (one piece when it is small).
 pub(super) fn cut_at_lines(text: &str) -> Vec<&str> {
     let threads = rayon::current_num_threads().max(1);
-    let count = (text.len() / PARALLEL_PIECE_BYTES).clamp(1, 4 * threads);
+    let count = (text.len() / PARALLEL_PIECE_BYTES).clamp(1, PIECES_PER_THREAD * threads);
     let mut pieces = Vec::with_capacity(count);
     let mut rest = text;
     for k in (1..count).rev() {
@@ -143,6 +150,7 @@ pub(super) fn refuse_oversized_faces(
     use rayon::prelude::*;
     let counts: Vec<FaceCount> = chunks
         .par_iter()
+        .with_max_len(1) // each piece handed out alone (`PIECES_PER_THREAD`)
         .map(|chunk| count_faces(chunk, usize::MAX))
         .collect();
     let (mut lines_before, mut triangles) = (0, 0usize);
@@ -529,47 +537,6 @@ fn statement_of(raw: &str) -> Option<(&str, &str, std::str::SplitAsciiWhitespace
     let mut words = content.split_ascii_whitespace();
     let keyword = words.next()?;
     Some((content, keyword, words))
-}
-
-/// Up to N numbers from `words`, all finite; more than N is an error.
-pub(super) struct Numbers<const N: usize> {
-    pub(super) values: [f32; N],
-    pub(super) len: usize,
-}
-
-pub(super) fn numbers<'a, const N: usize>(
-    words: impl Iterator<Item = &'a str>,
-    keyword: &str,
-    line: usize,
-) -> Result<Numbers<N>, LineError> {
-    let mut out = Numbers {
-        values: [0.0; N],
-        len: 0,
-    };
-    for word in words {
-        if out.len == N {
-            return Err(LineError {
-                line,
-                message: format!("`{keyword}` takes at most {N} numbers"),
-            });
-        }
-        let v: f32 = word.parse().map_err(|_| LineError {
-            line,
-            message: format!(
-                "`{keyword}`: {} is not a number",
-                crate::messages::quoted(word)
-            ),
-        })?;
-        if !v.is_finite() {
-            return Err(LineError {
-                line,
-                message: format!("`{keyword}`: {word} is not a finite number"),
-            });
-        }
-        out.values[out.len] = v;
-        out.len += 1;
-    }
-    Ok(out)
 }
 
 /// What follows the keyword on a line (a name may hold spaces).
