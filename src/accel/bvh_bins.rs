@@ -88,6 +88,7 @@ impl Bounds {
         }
     }
 
+    #[inline(always)]
     pub(super) fn aabb(self) -> Aabb {
         Aabb {
             min: self.min.into(),
@@ -147,6 +148,7 @@ pub(super) struct BinSets {
 }
 
 impl BinSets {
+    #[inline]
     pub(super) fn new() -> BinSets {
         BinSets {
             all: Bins::EMPTY,
@@ -183,6 +185,7 @@ impl BinSets {
     /// `fill` for a node of many items: its bins in pieces on several threads, absorbed
     /// in order. The same counts and the same boxes' areas (a box's bounds may differ
     /// only between 0 and −0, which the areas do not see), so the same split.
+    #[inline]
     fn fill_many(&mut self, items: &[BuildItem], low: Vec3A, scale: Vec3A) -> &Bins {
         use rayon::prelude::*;
         let pieces: Vec<Bins> = items
@@ -234,6 +237,9 @@ const BINNING_PIECE: usize = 8192;
 
 /// The cheapest split by the SAH among every axis's bin boundaries, as (cost, axis, the
 /// first bin on the right); None when all centroids coincide.
+// Inlined into the split (another file's code, which the compiler may otherwise build
+// apart and call).
+#[inline]
 pub(super) fn best_split(
     items: &[BuildItem],
     bounds: &Aabb,

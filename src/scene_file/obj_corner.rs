@@ -17,6 +17,7 @@ pub(super) const NONE: u32 = u32::MAX;
 
 /// One face corner as written, `v`, `v/vt`, `v//vn` or `v/vt/vn`: its indices, not yet
 /// checked against what is defined.
+#[inline(always)] // as `resolve`
 pub(super) fn raw_corner(word: &str, line: usize) -> Result<RawCorner, LineError> {
     match plain_corner(word.as_bytes()) {
         Some(corner) => Ok(corner),
@@ -25,6 +26,7 @@ pub(super) fn raw_corner(word: &str, line: usize) -> Result<RawCorner, LineError
 }
 
 /// `raw_corner` by the general parser, for every spelling and every refusal.
+#[inline(never)]
 fn general_corner(word: &str, line: usize) -> Result<RawCorner, LineError> {
     let fail = |message: String| LineError { line, message };
     let mut fields = word.split('/');
@@ -88,18 +90,14 @@ fn plain_corner(word: &[u8]) -> Option<RawCorner> {
 
 /// A corner's indices resolved (1-based, or negative: counted back from the last element
 /// defined so far) against the counts of positions, texture coordinates and normals so far.
+// Inlined: a million-triangle file resolves millions of corners, and the answer is best
+// kept in registers rather than passed back through memory.
+#[inline(always)]
 pub(super) fn resolve(
     raw: &RawCorner,
     counts: [usize; 3],
     line: usize,
 ) -> Result<Corner, LineError> {
-    let written = || match raw {
-        [v, ABSENT, ABSENT] => format!("{v}"),
-        [v, t, ABSENT] => format!("{v}/{t}"),
-        [v, ABSENT, n] => format!("{v}//{n}"),
-        [v, t, n] => format!("{v}/{t}/{n}"),
-    };
-    let what = ["vertex", "texture coordinate", "normal"];
     let mut out = [NONE; 3];
     for k in 0..3 {
         let i = raw[k];
@@ -109,18 +107,32 @@ pub(super) fn resolve(
         let count = counts[k];
         let resolved = if i > 0 { i - 1 } else { count as i64 + i };
         if i == 0 || resolved < 0 || resolved >= count as i64 {
-            return Err(LineError {
-                line,
-                message: format!(
-                    "face corner {}: {} index {i} is out of range ({count} defined so far)",
-                    crate::messages::quoted(&written()),
-                    what[k]
-                ),
-            });
+            return Err(out_of_range(raw, k, count, line));
         }
         out[k] = resolved as u32;
     }
     Ok(out)
+}
+
+/// The refusal of `raw`'s index `k`, which is not among the `count` defined so far.
+#[cold]
+#[inline(never)]
+fn out_of_range(raw: &RawCorner, k: usize, count: usize, line: usize) -> LineError {
+    let written = match raw {
+        [v, ABSENT, ABSENT] => format!("{v}"),
+        [v, t, ABSENT] => format!("{v}/{t}"),
+        [v, ABSENT, n] => format!("{v}//{n}"),
+        [v, t, n] => format!("{v}/{t}/{n}"),
+    };
+    let what = ["vertex", "texture coordinate", "normal"][k];
+    LineError {
+        line,
+        message: format!(
+            "face corner {}: {what} index {} is out of range ({count} defined so far)",
+            crate::messages::quoted(&written),
+            raw[k]
+        ),
+    }
 }
 
 #[cfg(test)]
