@@ -315,24 +315,37 @@ pub(super) fn below_split(x: f32, split: usize) -> bool {
     x < split as f32 || x.is_nan()
 }
 
+/// Boxes along a diagonal, some coinciding, of varied sizes: the primitives of this file's
+/// tests and bvh_build.rs's.
+#[cfg(test)]
+pub(super) fn test_boxes(n: usize) -> Vec<Aabb> {
+    (0..n)
+        .map(|i| {
+            let c = glam::Vec3::new(
+                (i % 97) as f32,
+                (i % 13) as f32 * 0.5,
+                (i / 7) as f32 * 0.25,
+            );
+            let r = glam::Vec3::splat(0.1 + (i % 5) as f32 * 0.05);
+            Aabb {
+                min: c - r,
+                max: c + r,
+            }
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    /// Items of varied sizes along a diagonal, some sharing a centre.
+    /// `test_boxes` as the build bins them.
     fn items(n: usize) -> Vec<BuildItem> {
-        (0..n)
-            .map(|i| {
-                let c = Vec3A::new(
-                    (i % 97) as f32,
-                    (i % 13) as f32 * 0.5,
-                    (i / 7) as f32 * 0.25,
-                );
-                let r = Vec3A::splat(0.1 + (i % 5) as f32 * 0.05);
-                BuildItem {
-                    min: c - r,
-                    max: c + r,
-                }
+        test_boxes(n)
+            .iter()
+            .map(|b| BuildItem {
+                min: b.min.into(),
+                max: b.max.into(),
             })
             .collect()
     }

@@ -398,25 +398,7 @@ fn partition(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use glam::Vec3;
-
-    /// Boxes along a diagonal, some coinciding, of varied sizes.
-    fn boxes(n: usize) -> Vec<Aabb> {
-        (0..n)
-            .map(|i| {
-                let c = Vec3::new(
-                    (i % 97) as f32,
-                    (i % 13) as f32 * 0.5,
-                    (i / 7) as f32 * 0.25,
-                );
-                let r = Vec3::splat(0.1 + (i % 5) as f32 * 0.05);
-                Aabb {
-                    min: c - r,
-                    max: c + r,
-                }
-            })
-            .collect()
-    }
+    use crate::accel::bvh_bins::test_boxes as boxes;
 
     /// Every primitive is in exactly one leaf, every leaf's box holds its primitives' and
     /// every interior node's box its children's; returns how many nodes it visited.
