@@ -93,9 +93,9 @@ mod tests {
     use crate::xorshift::XorShift32;
 
     /// Where the fast path gives a value it is `str::parse`'s bit for bit, and it declines
-    /// what `str::parse` refuses: on hand-picked words and on 200,000 made-up ones of
-    /// digits, points, signs, exponents and stray bytes, many with eight or nine digits
-    /// where the two roundings could part.
+    /// every word outside its spelling: on hand-picked words, on 200,000 made-up ones of
+    /// digits, points, signs, exponents and stray bytes, and on 400,000 numbers of eight
+    /// significant digits, where a second rounding would part from the first.
     #[test]
     fn plain_decimals_read_as_str_parse_reads_them() {
         let agree = |word: &str| {
@@ -163,7 +163,7 @@ mod tests {
                 .collect();
             agree(&word);
         }
-        // Eight and nine significant digits with the point anywhere: the integers near
+        // Eight significant digits with the point anywhere: the integers from 10^7 up to
         // 2^24, where f32's spacing is widest relative to the digits.
         for _ in 0..200_000 {
             let digits = 10_000_000 + rng.next_u32() % 6_777_216;
