@@ -15,6 +15,8 @@ pub struct ImageTexture {
     pub height: u32,
     /// Three bytes per texel, rows top to bottom: the decoder's own buffer, kept as it is.
     texels: Vec<u8>,
+    /// The average colour, taken once: every appearance made from the scene asks for it.
+    mean: Vec3,
 }
 
 /// Why an image file cannot be a texture.
@@ -136,10 +138,12 @@ impl ImageTexture {
             width as u64 * height as u64 * 3,
             "texel count"
         );
+        let mean = mean_of(&raw);
         Self {
             width,
             height,
             texels: raw,
+            mean,
         }
     }
 
@@ -192,13 +196,21 @@ impl ImageTexture {
 
     /// The average colour of the image (used to tint light passing through it).
     pub fn mean(&self) -> Vec3 {
-        // Summed in f64: a long f32 sum would drift.
-        let mut sum = glam::DVec3::ZERO;
-        for t in self.texels.chunks_exact(3) {
-            sum += glam::DVec3::new(t[0] as f64, t[1] as f64, t[2] as f64);
-        }
-        (sum / (255.0 * self.texel_count().max(1) as f64)).as_vec3()
+        self.mean
     }
+}
+
+/// The average colour of RGB texels: the sums are whole numbers, exact in u64 (a long f32
+/// sum would drift), divided once in f64.
+fn mean_of(texels: &[u8]) -> Vec3 {
+    let mut sum = [0u64; 3];
+    for t in texels.chunks_exact(3) {
+        for (s, &v) in sum.iter_mut().zip(t) {
+            *s += v as u64;
+        }
+    }
+    let count = (texels.len() / 3).max(1) as f64;
+    (glam::DVec3::from(sum.map(|s| s as f64)) / (255.0 * count)).as_vec3()
 }
 
 fn io_error(e: std::io::Error) -> TextureError {
@@ -442,6 +454,29 @@ mod tests {
     fn four_texels() -> ImageTexture {
         // 2×2: red, green / blue, white.
         ImageTexture::from_rgb8(2, 2, vec![255, 0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 255])
+    }
+
+    #[test]
+    fn the_mean_is_the_texels_average() {
+        // Red, green, blue and white: each channel is full in two of the four.
+        assert_eq!(four_texels().mean(), Vec3::splat(0.5));
+        let grey = ImageTexture::from_rgb8(3, 1, vec![51; 9]);
+        assert_eq!(grey.mean(), Vec3::splat(0.2));
+    }
+
+    #[test]
+    fn the_mean_is_that_of_a_plain_sum() {
+        // Small and large sizes, against a plain f64 sum.
+        for texels in [1usize, 2, 3, 5, 1 << 18, (1 << 18) + 5] {
+            let raw: Vec<u8> = (0..texels * 3).map(|i| (i * 37 % 251) as u8).collect();
+            let mut plain = glam::DVec3::ZERO;
+            for t in raw.chunks_exact(3) {
+                plain += glam::DVec3::new(t[0] as f64, t[1] as f64, t[2] as f64);
+            }
+            let expected = (plain / (255.0 * texels as f64)).as_vec3();
+            let image = ImageTexture::from_rgb8(texels as u32, 1, raw);
+            assert_eq!(image.mean(), expected, "{texels} texels");
+        }
     }
 
     #[test]
