@@ -254,6 +254,9 @@ fn encode_png(
     let (w, h) = (image.width(), image.height());
     let mut encoder = png::Encoder::new(writer, w, h);
     encoder.set_color(png::ColorType::Rgb);
+    // fdeflate, tuned for images: the default (zlib's level) costs as much as a few
+    // percent of a whole render of the seed, for a file about 15% smaller.
+    encoder.set_compression(png::Compression::Fast);
     match transfer {
         // gAMA 1.0: the stored values are proportional to light.
         Transfer::Linear => encoder.set_source_gamma(png::ScaledFloat::new(1.0)),
