@@ -342,7 +342,7 @@ fn signals_remove_the_temporary_file_and_exit_as_shells_expect() {
     for (signal, code) in [("INT", 130), ("TERM", 143), ("HUP", 129)] {
         let child = Command::new(env!("CARGO_BIN_EXE_prism"))
             .args(["render", scene.to_str().unwrap(), "-o"])
-            .arg(d.path("out.png"))
+            .arg(d.path("out.exr"))
             .args([
                 "--quiet", "--width", "3000", "--height", "2000", "--aa", "2",
             ])
@@ -350,8 +350,9 @@ fn signals_remove_the_temporary_file_and_exit_as_shells_expect() {
             .spawn()
             .unwrap();
         // Wait until the image is being written: its temporary file exists only then (a
-        // large image, so that the writing lasts long enough to be caught). The render
-        // before it must finish first, however slow or loaded the machine.
+        // large image in a format slow to write, float EXR, so that the writing lasts long
+        // enough to be caught: some 0.4 s, where a fast-compressed PNG lasts 10 ms). The
+        // render before it must finish first, however slow or loaded the machine.
         let start = Instant::now();
         while d.others(&["scene.toml"]).is_empty() {
             assert!(
