@@ -6,36 +6,26 @@
 //! `cargo run --release --example load_build -- FILE.obj [RUNS] [THREADS]`
 //! (5 runs and 2 threads unless given).
 
+#[path = "shared/harness.rs"]
+mod harness;
+
+use harness::{Arguments, median};
 use prism::accel::Model;
 use prism::scene_file::parse_obj;
 use std::hint::black_box;
 use std::time::Instant;
 
 fn main() {
-    if let Err(message) = run() {
-        eprintln!("load_build: {message}");
-        std::process::exit(2);
-    }
+    harness::run("load_build", run);
 }
 
 fn run() -> Result<(), Box<dyn std::error::Error>> {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    let Some(path) = args.first() else {
-        return Err("usage: load_build FILE.obj [RUNS] [THREADS]".into());
-    };
-    let number = |k: usize, default: usize, what: &str| -> Result<usize, String> {
-        match args.get(k) {
-            None => Ok(default),
-            Some(text) => match text.parse::<usize>() {
-                Ok(n) if n > 0 => Ok(n),
-                _ => Err(format!(
-                    "{what} must be a whole number above 0, not {text:?}"
-                )),
-            },
-        }
-    };
-    let runs = number(1, 5, "RUNS")?;
-    let threads = number(2, 2, "THREADS")?;
+    let Arguments {
+        path,
+        runs,
+        threads,
+    } = Arguments::read("load_build FILE.obj [RUNS] [THREADS]", 5, 2)?;
+    let path = path.as_str();
     let text = std::fs::read_to_string(path).map_err(|e| format!("cannot read {path}: {e}"))?;
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
@@ -61,10 +51,6 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
         }
         Ok(())
     })?;
-    let median = |mut v: Vec<f64>| {
-        v.sort_by(f64::total_cmp);
-        v[v.len() / 2]
-    };
     let both = median(both);
     println!(
         "{triangles} triangles, {threads} thread(s), medians of {runs}: loading {:.4} s, \

@@ -7,6 +7,10 @@
 //! `cargo run --release --example pass_time -- SCENE.toml [RUNS] [THREADS]`
 //! (7 runs and 2 threads unless given).
 
+#[path = "shared/harness.rs"]
+mod harness;
+
+use harness::{Arguments, median};
 use prism::render::{ProgressiveRender, RenderSettings};
 use prism::sampler::SampleLayout;
 use prism::scene::PreparedScene;
@@ -17,30 +21,16 @@ use std::sync::Arc;
 use std::time::Instant;
 
 fn main() {
-    if let Err(message) = run() {
-        eprintln!("pass_time: {message}");
-        std::process::exit(2);
-    }
+    harness::run("pass_time", run);
 }
 
 fn run() -> Result<(), Box<dyn std::error::Error>> {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    let Some(path) = args.first() else {
-        return Err("usage: pass_time SCENE.toml [RUNS] [THREADS]".into());
-    };
-    let number = |k: usize, default: usize, what: &str| -> Result<usize, String> {
-        match args.get(k) {
-            None => Ok(default),
-            Some(text) => match text.parse::<usize>() {
-                Ok(n) if n > 0 => Ok(n),
-                _ => Err(format!(
-                    "{what} must be a whole number above 0, not {text:?}"
-                )),
-            },
-        }
-    };
-    let runs = number(1, 7, "RUNS")?;
-    let threads = number(2, 2, "THREADS")?;
+    let Arguments {
+        path,
+        runs,
+        threads,
+    } = Arguments::read("pass_time SCENE.toml [RUNS] [THREADS]", 7, 2)?;
+    let path = path.as_str();
     let scene = load_scene(Path::new(path)).map_err(|e| format!("{path}: {e}"))?;
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
@@ -57,11 +47,10 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
             times.push(start.elapsed().as_secs_f64() * 1e3);
         }
     });
-    times.sort_by(f64::total_cmp);
+    let fastest = times.iter().copied().fold(f64::INFINITY, f64::min);
     println!(
-        "{path}: one pass, {threads} threads, {runs} runs: fastest {:.1} ms, median {:.1} ms",
-        times[0],
-        times[runs / 2]
+        "{path}: one pass, {threads} threads, {runs} runs: fastest {fastest:.1} ms, median {:.1} ms",
+        median(times)
     );
     Ok(())
 }
