@@ -435,6 +435,45 @@ fn bad_up_vectors_are_rejected() {
     );
 }
 
+/// A whole frame is encoded from the render's own pixel sums, as the memory check before a
+/// render assumes (`RenderMemory`): the peak stays within its figure plus what the process
+/// holds anyway (code, the earth texture, thread stacks). A copy of the film, 148 MiB here,
+/// would go past it.
+#[test]
+fn a_whole_frame_peaks_within_the_memory_the_check_assumes() {
+    use prism::render::{BitDepth, ImageFormat, PixelRect, RenderMemory};
+    let dir = tempfile::tempdir().unwrap();
+    let (out, json) = (dir.path().join("out.png"), dir.path().join("stats.json"));
+    let (w, h) = (2400, 1800);
+    let run = prism(&[
+        "render",
+        "-o",
+        out.to_str().unwrap(),
+        "--width",
+        &w.to_string(),
+        "--height",
+        &h.to_string(),
+        "--aa",
+        "1",
+        "--quiet",
+        "--stats-json",
+        json.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", common::stderr(&run));
+    let stats: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let peak = stats["peak_memory_bytes"].as_u64().unwrap();
+    let frame = PixelRect::full(w, h);
+    let model = RenderMemory::of(frame, frame, ImageFormat::Png, BitDepth::Eight).total();
+    let process = 64 << 20;
+    assert!(
+        peak < model + process,
+        "peak {} MiB against {} MiB assumed for the render",
+        peak >> 20,
+        model >> 20
+    );
+}
+
 /// The statistics at the end: time by stage and peak memory on stderr, and with
 /// `--stats-json` the same figures as JSON, consistent with each other; an unwritable
 /// statistics path fails before the render.

@@ -385,9 +385,11 @@ fn render_frame(
             saved: false
         });
     }
-    let mut sums = job.sums_of(plan.region).into_owned();
+    // The job's own sums are encoded where they are: a copy of the film would cost more
+    // than encoding it.
+    let mut sums = job.sums_of(plan.region);
     if args.denoise {
-        sums = denoised(&sums, &scene, &job, pool)?;
+        sums = std::borrow::Cow::Owned(denoised(&sums, &scene, &job, pool)?);
     }
     let image = prism::render::encode(&sums, format, &plan.options);
     let path = pending.finish_image(&image, format, &plan.options, plan.placement)?;
