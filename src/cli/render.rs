@@ -385,8 +385,8 @@ fn render_frame(
             saved: false
         });
     }
-    // The job's own sums are encoded where they are: a copy of the film would cost more
-    // than encoding it.
+    // The job's own sums are encoded where they are: a copy would hold a second film, which
+    // the memory check (`RenderMemory`) does not count, and take longer than the encoding.
     let mut sums = job.sums_of(plan.region);
     if args.denoise {
         sums = std::borrow::Cow::Owned(denoised(&sums, &scene, &job, pool)?);
