@@ -12,6 +12,7 @@ pub mod camera;
 pub mod color;
 pub mod geometry;
 pub mod integrator;
+pub mod isa;
 pub mod limits;
 pub mod messages;
 pub mod numerics;

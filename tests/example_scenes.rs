@@ -3,23 +3,16 @@
 //! something (more than one colour, some of it lit). The scenes are what a new user opens
 //! first, and the docs' pictures come from them.
 
+mod common;
+
 use prism::render::{RenderSettings, render};
 use prism::scene::PreparedScene;
 use prism::scene_file::load_scene;
-use std::path::Path;
 use std::sync::Arc;
 
 #[test]
 fn every_example_scene_loads_and_renders() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes");
-    let mut paths: Vec<_> = std::fs::read_dir(&dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
-        .collect();
-    paths.sort();
-    assert!(paths.len() >= 20, "{} scenes", paths.len());
-    for path in &paths {
+    for path in &common::example_scenes() {
         let name = path.file_name().unwrap().to_string_lossy();
         let scene = load_scene(path).unwrap_or_else(|e| panic!("{name}: {e}"));
         let mut settings =

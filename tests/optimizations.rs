@@ -19,6 +19,24 @@ fn prepared(scene: &Scene, off: impl FnOnce(&mut AccelOptions)) -> Arc<PreparedS
     Arc::new(PreparedScene::with_options(scene, options))
 }
 
+/// Sphere number `i` of a crowd added to a scene.
+fn bead(
+    i: usize,
+    center: glam::Vec3,
+    radius: f32,
+    material: prism::appearance::Material,
+) -> prism::scene::SceneObject {
+    prism::scene::SceneObject {
+        casts_shadow: true,
+        placement: Default::default(),
+        group: None,
+        node: None,
+        name: format!("bead {i}"),
+        shape: prism::scene::ShapeDesc::Sphere { center, radius },
+        material,
+    }
+}
+
 fn largest_difference(a: &[u8], b: &[u8]) -> u8 {
     a.iter().zip(b).map(|(x, y)| x.abs_diff(*y)).max().unwrap()
 }
@@ -66,8 +84,26 @@ fn opaque_scenes_take_the_any_hit_shadow_shortcut_unchanged() {
 
 #[test]
 fn the_bvh_answers_as_a_flat_list_would() {
-    // A one-leaf hierarchy (every primitive in the root) is the unoptimised list.
-    let scene = seed();
+    // A one-leaf hierarchy (every primitive in the root) is the unoptimised list. The seed's
+    // objects fit in one eight-wide node, so a ring of mirror beads among them makes the
+    // tree a tree.
+    use glam::Vec3;
+    use prism::appearance::{Material, Texture};
+    let mut scene = seed();
+    for i in 0..40 {
+        let a = i as f32 * 0.45;
+        let center = Vec3::new(
+            12.0 * a.cos(),
+            -8.0 + (i % 7) as f32 * 2.5,
+            -75.0 + 12.0 * a.sin(),
+        );
+        let material = Material {
+            texture: Texture::Solid(Vec3::new(0.3, 0.6, 0.9)),
+            reflectivity: if i % 3 == 0 { 0.7 } else { 0.0 },
+            ..Material::default()
+        };
+        scene.objects.push(bead(i, center, 1.2, material));
+    }
     let tree = prepared(&scene, |_| {});
     let flat = prepared(&scene, |o| o.bvh = false);
     assert!(tree.geometry.accel().bvh_nodes() > 1);
@@ -114,7 +150,6 @@ fn light_buffers_draw_the_image_the_bvh_draws() {
     use prism::appearance::Light;
     use prism::appearance::Material;
     use prism::appearance::Texture;
-    use prism::scene::{SceneObject, ShapeDesc};
 
     let seed = seed();
     let mut among = seed.clone();
@@ -133,26 +168,17 @@ fn light_buffers_draw_the_image_the_bvh_draws() {
     });
     for i in 0..60 {
         let a = i as f32 * 0.7;
-        beads.objects.push(SceneObject {
-            casts_shadow: true,
-            placement: Default::default(),
-            group: None,
-            node: None,
-            name: format!("bead {i}"),
-            shape: ShapeDesc::Sphere {
-                center: Vec3::new(
-                    2.0 + 3.0 * a.cos(),
-                    12.0 + (i % 5) as f32,
-                    -60.0 + 3.0 * a.sin(),
-                ),
-                radius: 0.8,
-            },
-            material: Material {
-                texture: Texture::Solid(Vec3::new(0.9, 0.5, 0.2)),
-                transparency: 0.6,
-                ..Material::default()
-            },
-        });
+        let center = Vec3::new(
+            2.0 + 3.0 * a.cos(),
+            12.0 + (i % 5) as f32,
+            -60.0 + 3.0 * a.sin(),
+        );
+        let material = Material {
+            texture: Texture::Solid(Vec3::new(0.9, 0.5, 0.2)),
+            transparency: 0.6,
+            ..Material::default()
+        };
+        beads.objects.push(bead(i, center, 0.8, material));
     }
     for (name, scene) in [("seed", seed), ("among", among), ("beads", beads)] {
         let lists = prepared(&scene, |_| {});

@@ -1,32 +1,41 @@
 //! The hierarchy that rays traverse: the binary SAH tree of `bvh_build.rs` collapsed into
-//! nodes of four children whose boxes one ray tests at once, one child per SIMD lane (as
-//! Embree's BVH4 does). On the seed scene this replaces about nine scalar box tests per
-//! ray with two or three node tests.
+//! nodes of eight children whose boxes one ray tests at once, one child per SIMD lane (as
+//! Embree's BVH8 does). The lanes are one AVX register where the processor has AVX2 and
+//! two SSE2 halves elsewhere (`isa.rs`); both find the same distances, so the traversal
+//! takes the same steps either way.
 
 pub use super::bvh_bins::LeafCost;
 pub use super::bvh_build::Coincident;
 use super::bvh_build::{BinaryBvh, MAX_DEPTH};
 use crate::geometry::{Aabb, RayQuery};
 use crate::numerics::gamma;
-use crate::simd::F32x4;
+#[cfg(target_arch = "x86_64")]
+use crate::simd::Avx;
+use crate::simd::{Halves, Lanes8};
 use glam::Vec3A;
 use std::mem::MaybeUninit;
 
-/// Four children: their boxes per axis side by side (structure of arrays), and what each
-/// child is. 128 bytes, two cache lines.
+/// Children per node: one per lane of the box test.
+pub const WIDTH: usize = 8;
+
+/// Eight children: their boxes per axis side by side (structure of arrays), and what each
+/// child is. 256 bytes, four cache lines.
 #[derive(Clone, Copy, Debug)]
 #[repr(C, align(64))]
 pub struct WideNode {
     /// The boxes' sides, low then high on x, then on y, then on z (`plane`). One array, so
     /// that a ray picks its near and far sides by index (`WideRay::near`) without a branch.
-    planes: [F32x4; 6],
+    planes: [[f32; WIDTH]; 6],
     /// An inner node's index, a leaf's first primitive, or `NO_CHILD`.
-    child: [u32; 4],
+    child: [u32; WIDTH],
     /// A leaf's number of primitives; 0 for inner nodes and unused lanes.
-    count: [u32; 4],
+    count: [u32; WIDTH],
 }
 
 const NO_CHILD: u32 = u32::MAX;
+
+/// `lane & LANE` is `lane` for any lane below WIDTH, a power of two.
+const LANE: usize = WIDTH - 1;
 
 /// `WideNode::planes[plane(axis, side)]` is a side of the boxes, LO or HI, on an axis. The
 /// two sides of an axis are neighbours: `^ FLIP` turns one's index into the other's.
@@ -51,25 +60,21 @@ impl WideNode {
     /// Every lane unused, with an empty box that no ray enters.
     const EMPTY: WideNode = WideNode {
         planes: [
-            F32x4::INFINITY,
-            F32x4::NEG_INFINITY,
-            F32x4::INFINITY,
-            F32x4::NEG_INFINITY,
-            F32x4::INFINITY,
-            F32x4::NEG_INFINITY,
+            [f32::INFINITY; WIDTH],
+            [f32::NEG_INFINITY; WIDTH],
+            [f32::INFINITY; WIDTH],
+            [f32::NEG_INFINITY; WIDTH],
+            [f32::INFINITY; WIDTH],
+            [f32::NEG_INFINITY; WIDTH],
         ],
-        child: [NO_CHILD; 4],
-        count: [0; 4],
+        child: [NO_CHILD; WIDTH],
+        count: [0; WIDTH],
     };
 
     fn set(&mut self, lane: usize, bounds: Aabb, child: Child) {
         for axis in 0..3 {
-            let mut lo = self.planes[plane(axis, LO)].to_array();
-            let mut hi = self.planes[plane(axis, HI)].to_array();
-            lo[lane] = bounds.min[axis];
-            hi[lane] = bounds.max[axis];
-            self.planes[plane(axis, LO)] = F32x4::from_array(lo);
-            self.planes[plane(axis, HI)] = F32x4::from_array(hi);
+            self.planes[plane(axis, LO)][lane] = bounds.min[axis];
+            self.planes[plane(axis, HI)][lane] = bounds.max[axis];
         }
         (self.child[lane], self.count[lane]) = match child {
             Child::Empty => (NO_CHILD, 0),
@@ -89,9 +94,7 @@ impl WideNode {
     /// The box of one lane (empty for unused lanes).
     pub fn bounds(&self, lane: usize) -> Aabb {
         let get = |side: usize| {
-            glam::Vec3::from_array(std::array::from_fn(|a| {
-                self.planes[plane(a, side)].to_array()[lane]
-            }))
+            glam::Vec3::from_array(std::array::from_fn(|a| self.planes[plane(a, side)][lane]))
         };
         Aabb {
             min: get(LO),
@@ -102,11 +105,12 @@ impl WideNode {
     /// Which lanes' boxes hold point `p` (bit i for lane i; on a face counts).
     #[inline(always)]
     fn holding(&self, p: Vec3A) -> u32 {
-        let mut mask = 0b1111;
+        let l = Halves;
+        let mut mask = (1 << WIDTH) - 1;
         for axis in 0..3 {
-            let at = F32x4::splat(p[axis]);
-            mask &=
-                self.planes[plane(axis, LO)].le_mask(at) & at.le_mask(self.planes[plane(axis, HI)]);
+            let at = l.splat(p[axis]);
+            mask &= l.le_mask(l.load(&self.planes[plane(axis, LO)]), at)
+                & l.le_mask(at, l.load(&self.planes[plane(axis, HI)]));
         }
         mask
     }
@@ -116,9 +120,9 @@ impl WideNode {
     /// 6.1.2), and an axis on which the ray runs exactly in a slab's boundary plane
     /// (0·∞ = NaN) leaves the interval alone (`max_or`/`min_or` keep the other operand).
     #[inline(always)]
-    fn enter(&self, ray: &WideRay, t_max: f32) -> (u32, F32x4) {
-        let mut t_enter = F32x4::splat(0.0);
-        let mut t_exit = F32x4::splat(t_max);
+    fn enter<L: Lanes8>(&self, l: L, ray: &WideRay<L>, t_max: f32) -> (u32, [f32; WIDTH]) {
+        let mut t_enter = l.splat(0.0);
+        let mut t_exit = l.splat(t_max);
         for axis in 0..3 {
             // The near plane is the low one for a ray going up the axis: no min/max needed,
             // and an empty box (lo = +∞, hi = −∞) is missed by every ray.
@@ -127,16 +131,16 @@ impl WideNode {
             // keeps it so; unchecked, as the test runs twice per axis per node.
             let (near, far) = unsafe {
                 (
-                    *self.planes.get_unchecked(near),
-                    *self.planes.get_unchecked(near ^ FLIP),
+                    l.load(self.planes.get_unchecked(near)),
+                    l.load(self.planes.get_unchecked(near ^ FLIP)),
                 )
             };
-            let t_near = (near - ray.origin[axis]) * ray.inv_dir[axis];
-            let t_far = (far - ray.origin[axis]) * ray.inv_dir_far[axis];
-            t_enter = t_near.max_or(t_enter);
-            t_exit = t_far.min_or(t_exit);
+            let t_near = l.mul(l.sub(near, ray.origin[axis]), ray.inv_dir[axis]);
+            let t_far = l.mul(l.sub(far, ray.origin[axis]), ray.inv_dir_far[axis]);
+            t_enter = l.max_or(t_near, t_enter);
+            t_exit = l.min_or(t_far, t_exit);
         }
-        (t_enter.le_mask(t_exit), t_enter)
+        (l.le_mask(t_enter, t_exit), l.to_array(t_enter))
     }
 }
 
@@ -150,24 +154,24 @@ fn traceable(q: &RayQuery) -> bool {
 }
 
 /// The ray's constants for `WideNode::enter`, in every lane.
-struct WideRay {
-    origin: [F32x4; 3],
-    inv_dir: [F32x4; 3],
+struct WideRay<L: Lanes8> {
+    origin: [L::V; 3],
+    inv_dir: [L::V; 3],
     /// `inv_dir` scaled by 1 + 2γ(3): the far distances' rounding allowance.
-    inv_dir_far: [F32x4; 3],
+    inv_dir_far: [L::V; 3],
     /// Per axis, the index in `WideNode::planes` of the side the ray meets first: the high
     /// side where it runs down the axis.
     near: [u8; 3],
 }
 
-impl WideRay {
+impl<L: Lanes8> WideRay<L> {
     #[inline(always)]
-    fn new(q: &RayQuery) -> Self {
+    fn new(l: L, q: &RayQuery) -> Self {
         let widen = 1.0 + 2.0 * gamma(3);
         Self {
-            origin: std::array::from_fn(|a| F32x4::splat(q.ray.origin[a])),
-            inv_dir: std::array::from_fn(|a| F32x4::splat(q.inv_dir[a])),
-            inv_dir_far: std::array::from_fn(|a| F32x4::splat(q.inv_dir[a] * widen)),
+            origin: std::array::from_fn(|a| l.splat(q.ray.origin[a])),
+            inv_dir: std::array::from_fn(|a| l.splat(q.inv_dir[a])),
+            inv_dir_far: std::array::from_fn(|a| l.splat(q.inv_dir[a] * widen)),
             // The sign bit, so that a −0 component (inverse −∞) counts as negative.
             near: std::array::from_fn(|a| {
                 plane(
@@ -217,9 +221,9 @@ impl<T: Copy, const N: usize> Stack<T, N> {
     }
 }
 
-/// Each node pushes at most four children and pops one, and a path has at most
+/// Each node pushes at most all its children and pops one, and a path has at most
 /// MAX_DEPTH + 1 nodes.
-const STACK_SIZE: usize = 3 * (MAX_DEPTH + 1) + 4;
+const STACK_SIZE: usize = (WIDTH - 1) * (MAX_DEPTH + 1) + WIDTH;
 
 /// A child waiting on the closest-hit stack, with the distance at which the ray enters it.
 #[derive(Clone, Copy)]
@@ -254,7 +258,7 @@ impl Bvh {
         (Bvh::collapsed(&binary, coincident), order)
     }
 
-    /// The four-wide tree of a binary one (`coincident` is its largest group of one
+    /// The eight-wide tree of a binary one (`coincident` is its largest group of one
     /// centre).
     pub fn collapsed(binary: &BinaryBvh, coincident: Coincident) -> Bvh {
         let mut bvh = Bvh {
@@ -284,7 +288,7 @@ impl Bvh {
     /// triangle groups). Called leaf by leaf in node order.
     pub fn map_leaves(&mut self, mut f: impl FnMut(std::ops::Range<u32>) -> std::ops::Range<u32>) {
         for node in &mut self.nodes {
-            for lane in 0..4 {
+            for lane in 0..WIDTH {
                 if let Child::Leaf(range) = node.child(lane) {
                     let items = f(range);
                     assert!(!items.is_empty(), "a leaf stands for at least one item");
@@ -294,13 +298,13 @@ impl Bvh {
         }
     }
 
-    /// Makes binary node `node` into a wide node (appended), whose lanes are the up to four
+    /// Makes binary node `node` into a wide node (appended), whose lanes are the up to eight
     /// descendants found by repeatedly opening the inner child of largest surface area.
     fn collapse(&mut self, binary: &BinaryBvh, node: usize) -> u32 {
         let nodes = &binary.nodes;
         let index = self.nodes.len();
         self.nodes.push(WideNode::EMPTY);
-        let mut lanes = [0usize; 4];
+        let mut lanes = [0usize; WIDTH];
         let mut used = if nodes[node].count > 0 {
             lanes[0] = node; // a root that is a leaf
             1
@@ -309,7 +313,7 @@ impl Bvh {
             lanes[1] = lanes[0] + 1;
             2
         };
-        while used < 4 {
+        while used < WIDTH {
             let open = (0..used)
                 .filter(|&l| nodes[lanes[l]].count == 0)
                 .max_by(|&a, &b| {
@@ -338,10 +342,40 @@ impl Bvh {
 
     /// Finds the closest hit. `hit(i, t_max)` tests primitive `i` (in stored order) and
     /// returns its distance when it is nearer than `t_max`. Children are visited nearest
-    /// first, and one the ray enters beyond the current nearest hit is skipped.
+    /// first, and one the ray enters beyond the current nearest hit is skipped. The same
+    /// calls in the same order with every instruction set.
     #[inline(always)]
     pub fn closest(
         &self,
+        q: &RayQuery,
+        t_max: f32,
+        hit: impl FnMut(u32, f32) -> Option<f32>,
+    ) -> f32 {
+        #[cfg(target_arch = "x86_64")]
+        if let Some(avx) = crate::isa::avx2_lanes() {
+            // SAFETY: an `Avx` exists only where the processor has AVX2.
+            return unsafe { self.closest_avx2(avx, q, t_max, hit) };
+        }
+        self.closest_with(Halves, q, t_max, hit)
+    }
+
+    /// `closest` compiled for AVX2, whose instructions the box tests inline.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn closest_avx2(
+        &self,
+        avx: Avx,
+        q: &RayQuery,
+        t_max: f32,
+        hit: impl FnMut(u32, f32) -> Option<f32>,
+    ) -> f32 {
+        self.closest_with(avx, q, t_max, hit)
+    }
+
+    #[inline(always)]
+    fn closest_with<L: Lanes8>(
+        &self,
+        l: L,
         q: &RayQuery,
         mut t_max: f32,
         mut hit: impl FnMut(u32, f32) -> Option<f32>,
@@ -349,18 +383,17 @@ impl Bvh {
         if self.nodes.is_empty() || !traceable(q) {
             return t_max;
         }
-        let ray = WideRay::new(q);
+        let ray = WideRay::new(l, q);
         let mut stack = Stack::<Pending, STACK_SIZE>::new();
         let mut node = 0usize;
         loop {
             let n = &self.nodes[node];
-            let (mask, t_enter) = n.enter(&ray, t_max);
-            let t_enter = t_enter.to_array();
-            // `lane & 3` is the lane itself: it only spares the indexing its bounds check.
+            let (mask, t_enter) = n.enter(l, &ray, t_max);
+            // `lane & LANE` is the lane itself: it only spares the indexing its bounds check.
             let pending = |lane: usize| Pending {
-                t_enter: t_enter[lane & 3],
-                child: n.child[lane & 3],
-                count: n.count[lane & 3],
+                t_enter: t_enter[lane & LANE],
+                child: n.child[lane & LANE],
+                count: n.count[lane & LANE],
             };
             // The nearest child entered is taken at once; the others are pushed farthest
             // first, so the nearest of them ends on top (ties: the higher lane first). A
@@ -376,7 +409,7 @@ impl Bvh {
                     mask.trailing_zeros() as usize,
                     rest.trailing_zeros() as usize,
                 );
-                let (near, far) = if t_enter[first & 3] < t_enter[second & 3] {
+                let (near, far) = if t_enter[first & LANE] < t_enter[second & LANE] {
                     (first, second)
                 } else {
                     (second, first)
@@ -384,14 +417,14 @@ impl Bvh {
                 stack.push(pending(far));
                 Some(pending(near))
             } else {
-                let mut entered = [0usize; 4];
+                let mut entered = [0usize; WIDTH];
                 let mut k = 0;
                 let mut mask = mask;
                 while mask != 0 {
                     let lane = mask.trailing_zeros() as usize;
                     mask &= mask - 1;
                     let mut j = k;
-                    while j > 0 && t_enter[entered[j - 1] & 3] < t_enter[lane & 3] {
+                    while j > 0 && t_enter[entered[j - 1] & LANE] < t_enter[lane & LANE] {
                         entered[j] = entered[j - 1];
                         j -= 1;
                     }
@@ -431,29 +464,52 @@ impl Bvh {
     /// Visits every primitive whose leaf the segment (0, t_max) reaches, in no particular
     /// order, until `visit` returns false.
     #[inline(always)]
-    pub fn visit(&self, q: &RayQuery, t_max: f32, mut visit: impl FnMut(u32) -> bool) {
+    pub fn visit(&self, q: &RayQuery, t_max: f32, visit: impl FnMut(u32) -> bool) {
+        #[cfg(target_arch = "x86_64")]
+        if let Some(avx) = crate::isa::avx2_lanes() {
+            // SAFETY: an `Avx` exists only where the processor has AVX2.
+            return unsafe { self.visit_avx2(avx, q, t_max, visit) };
+        }
+        self.visit_with(Halves, q, t_max, visit)
+    }
+
+    /// `visit` compiled for AVX2, whose instructions the box tests inline.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn visit_avx2(&self, avx: Avx, q: &RayQuery, t_max: f32, visit: impl FnMut(u32) -> bool) {
+        self.visit_with(avx, q, t_max, visit)
+    }
+
+    #[inline(always)]
+    fn visit_with<L: Lanes8>(
+        &self,
+        l: L,
+        q: &RayQuery,
+        t_max: f32,
+        mut visit: impl FnMut(u32) -> bool,
+    ) {
         if self.nodes.is_empty() || !traceable(q) {
             return;
         }
-        let ray = WideRay::new(q);
+        let ray = WideRay::new(l, q);
         let mut stack = Stack::<u32, STACK_SIZE>::new();
         let mut node = 0u32;
         loop {
             let n = &self.nodes[node as usize];
-            let (mut mask, _) = n.enter(&ray, t_max);
+            let (mut mask, _) = n.enter(l, &ray, t_max);
             // The last inner child entered is the next node, taken at once rather than
             // pushed and popped: the same order.
             let mut next = None;
             while mask != 0 {
                 let lane = mask.trailing_zeros() as usize;
                 mask &= mask - 1;
-                if n.count[lane] == 0 {
-                    if let Some(earlier) = next.replace(n.child[lane]) {
+                if n.count[lane & LANE] == 0 {
+                    if let Some(earlier) = next.replace(n.child[lane & LANE]) {
                         stack.push(earlier);
                     }
                 } else {
-                    let first = n.child[lane];
-                    for i in first..first + n.count[lane] {
+                    let first = n.child[lane & LANE];
+                    for i in first..first + n.count[lane & LANE] {
                         if !visit(i) {
                             return;
                         }
@@ -510,7 +566,7 @@ impl Bvh {
         let mut stack = vec![0u32];
         while let Some(node) = stack.pop() {
             let n = &self.nodes[node as usize];
-            for lane in 0..4 {
+            for lane in 0..WIDTH {
                 if !n.bounds(lane).overlaps(b) {
                     continue;
                 }
@@ -530,7 +586,7 @@ impl Bvh {
     /// The number of nodes on the longest path from the root.
     pub fn depth(&self) -> usize {
         fn depth_of(nodes: &[WideNode], i: usize) -> usize {
-            1 + (0..4)
+            1 + (0..WIDTH)
                 .filter_map(|lane| match nodes[i].child(lane) {
                     Child::Node(c) => Some(depth_of(nodes, c as usize)),
                     _ => None,
@@ -646,7 +702,7 @@ mod tests {
             seen: &mut [u32],
             outer: &[Aabb],
         ) {
-            for lane in 0..4 {
+            for lane in 0..WIDTH {
                 let b = bvh.nodes[node].bounds(lane);
                 match bvh.nodes[node].child(lane) {
                     Child::Empty => assert!(b.is_empty()),
@@ -747,12 +803,70 @@ mod tests {
         assert_eq!(calls, 1);
     }
 
+    /// The AVX2 traversal makes the same calls, in the same order, with the same distance
+    /// bounds, as the baseline: for closest hits, for any-hit visits, for rays along box
+    /// faces, from inside boxes and with NaN in them.
+    #[cfg(target_arch = "x86_64")]
+    #[test]
+    fn avx2_traversal_takes_the_baseline_steps() {
+        let Some(avx) = Avx::new() else {
+            eprintln!("no AVX2 on this processor: only the baseline traversal runs here");
+            return;
+        };
+        let spheres = grid_spheres(3000);
+        let bounds: Vec<Aabb> = spheres.iter().map(|s| s.bounds()).collect();
+        let (bvh, order) = Bvh::build(&bounds);
+        let stored: Vec<Sphere> = order.iter().map(|&i| spheres[i as usize]).collect();
+        let mut rng = crate::xorshift::XorShift32::new(7);
+        let mut next = || rng.next_f32();
+        let mut rays: Vec<Ray> = (0..3000)
+            .map(|_| {
+                let origin = Vec3::new(next() * 320.0 - 10.0, next() * 80.0 - 10.0, 20.0);
+                Ray::new(origin, Vec3::new(next() - 0.5, next() - 0.5, -1.0))
+            })
+            .collect();
+        rays.extend([
+            // Leaving a box from its face (entry and exit both 0), along the faces of a
+            // row of boxes, from inside one, and with NaN.
+            Ray::new(Vec3::new(1.0, 0.0, -10.0), Vec3::X),
+            Ray::new(Vec3::new(-5.0, 1.0, -10.0), Vec3::X),
+            Ray::new(Vec3::new(0.0, 0.0, -10.0), Vec3::Y),
+            Ray::new(Vec3::new(f32::NAN, 0.0, 0.0), Vec3::NEG_Z),
+        ]);
+        for ray in rays {
+            let q = RayQuery::new(ray);
+            let steps = |calls: &mut Vec<(u32, u32)>, i: u32, t_max: f32| {
+                calls.push((i, t_max.to_bits()));
+                stored[i as usize].intersect(&ray, t_max)
+            };
+            let (mut baseline, mut wide) = (Vec::new(), Vec::new());
+            let a = bvh.closest_with(Halves, &q, f32::INFINITY, |i, t| steps(&mut baseline, i, t));
+            // SAFETY: `avx` exists, so the processor has AVX2.
+            let b =
+                unsafe { bvh.closest_avx2(avx, &q, f32::INFINITY, |i, t| steps(&mut wide, i, t)) };
+            assert_eq!((a.to_bits(), &baseline), (b.to_bits(), &wide), "{ray:?}");
+            let (mut baseline, mut wide) = (Vec::new(), Vec::new());
+            bvh.visit_with(Halves, &q, 400.0, |i| {
+                baseline.push(i);
+                true
+            });
+            // SAFETY: as above.
+            unsafe {
+                bvh.visit_avx2(avx, &q, 400.0, |i| {
+                    wide.push(i);
+                    true
+                })
+            };
+            assert_eq!(baseline, wide, "{ray:?}");
+        }
+    }
+
     /// The entry distance into lane 0's box and whether the ray enters it before `t_max`.
     fn enter_one(b: Aabb, q: &RayQuery, t_max: f32) -> Option<f32> {
         let mut node = WideNode::EMPTY;
         node.set(0, b, Child::Leaf(0..1));
-        let (mask, t) = node.enter(&WideRay::new(q), t_max);
-        (mask & 1 != 0).then(|| t.to_array()[0])
+        let (mask, t) = node.enter(Halves, &WideRay::new(Halves, q), t_max);
+        (mask & 1 != 0).then_some(t[0])
     }
 
     #[test]

@@ -1,5 +1,5 @@
 //! The binned surface area heuristic build (Wald 2007) of a binary hierarchy, which
-//! `bvh.rs` then collapses into four-wide nodes for traversal.
+//! `bvh.rs` then collapses into eight-wide nodes for traversal.
 //!
 //! Each node makes two passes over its primitives: the bins of all three axes at once
 //! (`bvh_bins.rs`, which also chooses the split), and the partition, which also gathers

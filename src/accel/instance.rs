@@ -389,7 +389,7 @@ mod tests {
         };
         let mut seen = vec![0u32; mesh.triangle_count()];
         for node in &bvh.nodes {
-            for lane in 0..4 {
+            for lane in 0..super::super::bvh::WIDTH {
                 let Child::Leaf(range) = node.child(lane) else {
                     continue;
                 };

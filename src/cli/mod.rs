@@ -53,7 +53,12 @@ pub const EXIT_STATUS_HELP: &str = "Exit status:
   1    failure: a write failed part-way, or an internal error
   2    bad input: the scene file, a flag, a path, a tile
   130  stopped by Ctrl+C (SIGINT); 143 by SIGTERM, 129 by SIGHUP (with --write-partial
-       the image so far was written; without, nothing)";
+       the image so far was written; without, nothing)
+
+Environment:
+  PRISM_ISA=auto|baseline|avx2
+       the instruction set of the BVH's box tests (default auto: AVX2 where the
+       processor has it); every choice makes the same image, bit for bit";
 
 /// A parser of flags that take an integer in `range` (a bound from prism::limits), so
 /// that the command line refuses exactly what the renderer refuses.
@@ -105,6 +110,8 @@ pub struct ViewArgs {
 }
 
 pub fn run(args: Args) -> Result<()> {
+    // Before any work, so that a PRISM_ISA this processor cannot follow is refused at once.
+    prism::isa::choose_from_environment()?;
     match args.command {
         Some(Command::Render(a)) => {
             stop::install()?;
@@ -186,6 +193,7 @@ pub fn exit_code(error: &anyhow::Error) -> u8 {
             || e.is::<StitchError>()
             || e.is::<ReadError>()
             || e.is::<render_args::BadOption>()
+            || e.is::<prism::isa::IsaError>()
     });
     if bad_input { 2 } else { 1 }
 }

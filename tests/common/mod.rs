@@ -22,6 +22,19 @@ pub fn prism(args: &[&str]) -> Output {
         .expect("prism runs")
 }
 
+/// The example scenes in assets/scenes, in name order.
+pub fn example_scenes() -> Vec<PathBuf> {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes");
+    let mut paths: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    paths.sort();
+    assert!(paths.len() >= 20, "{} scenes", paths.len());
+    paths
+}
+
 /// What a run said on stderr.
 pub fn stderr(out: &Output) -> String {
     String::from_utf8_lossy(&out.stderr).into_owned()
