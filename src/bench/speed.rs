@@ -375,10 +375,12 @@ pub fn run(cfg: Config) -> Result<()> {
          processes (reading the scene, rendering, writing a PNG), alternated, the median of \
          {} runs each; the mesh passes are the fastest of 7 in one process, as Embree's \
          tracer reports its own, each timed from a render job made beforehand (as Embree's \
-         tracer allocates its image before its clock starts).\n",
+         tracer allocates its image before its clock starts). prism's box tests ran on the \
+         {} instruction set (`PRISM_ISA`, docs/farm.md).\n",
         if cfg.quick { " --quick" } else { "" },
         std::thread::available_parallelism().map_or(1, |n| n.get()),
-        cfg.runs
+        cfg.runs,
+        prism::isa::active().name()
     );
     let _ = writeln!(md, "| measured | prism | reference | ratio | target |");
     let _ = writeln!(md, "|---|---|---|---|---|");
