@@ -169,9 +169,23 @@ impl<L: Lanes8> WideRay<L> {
     fn new(l: L, q: &RayQuery) -> Self {
         let widen = 1.0 + 2.0 * gamma(3);
         Self {
-            origin: std::array::from_fn(|a| l.splat(q.ray.origin[a])),
-            inv_dir: std::array::from_fn(|a| l.splat(q.inv_dir[a])),
-            inv_dir_far: std::array::from_fn(|a| l.splat(q.inv_dir[a] * widen)),
+            // Spelled out: a closure would be compiled apart from the AVX2 function this is
+            // inlined into, and each lane operation in it would be a call where not inlined.
+            origin: [
+                l.splat(q.ray.origin.x),
+                l.splat(q.ray.origin.y),
+                l.splat(q.ray.origin.z),
+            ],
+            inv_dir: [
+                l.splat(q.inv_dir.x),
+                l.splat(q.inv_dir.y),
+                l.splat(q.inv_dir.z),
+            ],
+            inv_dir_far: [
+                l.splat(q.inv_dir.x * widen),
+                l.splat(q.inv_dir.y * widen),
+                l.splat(q.inv_dir.z * widen),
+            ],
             // The sign bit, so that a −0 component (inverse −∞) counts as negative.
             near: std::array::from_fn(|a| {
                 plane(
