@@ -9,10 +9,10 @@ use std::sync::atomic::{AtomicU8, Ordering};
 /// A set of instructions for the lanes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum InstructionSet {
-    /// Four lanes at a time: SSE2 on x86-64, plain arrays (which the compiler may
-    /// vectorise) elsewhere. Every processor runs it.
+    /// Eight lanes as two halves of four: SSE2 on x86-64, plain arrays (which the compiler
+    /// may vectorise) elsewhere. Every processor runs it.
     Baseline,
-    /// Eight lanes at a time with AVX2, on x86-64 processors that have it.
+    /// Eight lanes in one register with AVX2, on x86-64 processors that have it.
     Avx2,
 }
 

@@ -25,6 +25,7 @@ mod instance;
 mod isolated;
 mod light_buffer;
 mod primitive;
+mod wide_node;
 
 pub use bvh::{Bvh, Coincident};
 pub use csg::{Csg, CsgLeaf, CsgNode, CsgOperation};
