@@ -16,13 +16,6 @@ pub enum InstructionSet {
     Avx2,
 }
 
-/// What `PRISM_ISA` may say.
-const NAMES: [(&str, Option<InstructionSet>); 3] = [
-    ("auto", None),
-    ("baseline", Some(InstructionSet::Baseline)),
-    ("avx2", Some(InstructionSet::Avx2)),
-];
-
 /// The environment variable that forces a path.
 pub const VARIABLE: &str = "PRISM_ISA";
 
@@ -38,6 +31,9 @@ pub enum IsaError {
 }
 
 impl InstructionSet {
+    /// Every set, for reading a name.
+    const ALL: [InstructionSet; 2] = [InstructionSet::Baseline, InstructionSet::Avx2];
+
     /// Its name, as `PRISM_ISA` takes it.
     pub fn name(self) -> &'static str {
         match self {
@@ -117,15 +113,18 @@ pub fn choose(set: InstructionSet) -> Result<(), IsaError> {
     Ok(())
 }
 
-/// Reads a value of `PRISM_ISA`: `auto` (the best the processor runs), `baseline` or
-/// `avx2`. Case and surrounding spaces do not matter.
+/// Reads a value of `PRISM_ISA`: `auto` (the best the processor runs; also an empty
+/// value, as shells leave a variable set to nothing), `baseline` or `avx2`. Case and
+/// surrounding spaces do not matter.
 pub fn parse(value: &str) -> Result<InstructionSet, IsaError> {
     let wanted = value.trim().to_ascii_lowercase();
-    match NAMES.iter().find(|(name, _)| *name == wanted) {
-        Some((_, Some(set))) => Ok(*set),
-        Some((_, None)) => Ok(InstructionSet::best()),
-        None => Err(IsaError::Unknown(value.to_string())),
+    if wanted.is_empty() || wanted == "auto" {
+        return Ok(InstructionSet::best());
     }
+    InstructionSet::ALL
+        .into_iter()
+        .find(|set| set.name() == wanted)
+        .ok_or_else(|| IsaError::Unknown(value.to_string()))
 }
 
 /// Chooses the set `PRISM_ISA` names, if it is set; returns the set in use.
@@ -156,6 +155,7 @@ mod tests {
         assert_eq!(parse("baseline"), Ok(InstructionSet::Baseline));
         assert_eq!(parse(" AVX2 "), Ok(InstructionSet::Avx2));
         assert_eq!(parse("auto"), Ok(InstructionSet::best()));
+        assert_eq!(parse(" "), Ok(InstructionSet::best()));
         let refused = parse("avx512").unwrap_err();
         assert_eq!(refused, IsaError::Unknown("avx512".into()));
         assert!(refused.to_string().contains("use auto, baseline or avx2"));
