@@ -139,6 +139,22 @@ fn first_hit_tiles_draw_the_image_the_bvh_draws() {
 }
 
 #[test]
+fn first_hit_tiles_draw_meshes_as_the_bvh_draws_them() {
+    // A mesh is listed only in the tiles its own hierarchy's boxes cover (first_hit.rs):
+    // the three placed bunnies, smooth, glass and faceted, must come out as a traversal of
+    // the BVH draws them.
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/bunny.toml");
+    let scene = prism::scene_file::load_scene(&path).unwrap();
+    let tiles = prepared(&scene, |_| {});
+    let traversal = prepared(&scene, |o| o.first_hit_tiles = false);
+    let s = RenderSettings::new(240, 180, 2);
+    assert_eq!(
+        image(tiles, scene.camera, s),
+        image(traversal, scene.camera, s)
+    );
+}
+
+#[test]
 fn light_buffers_draw_the_image_the_bvh_draws() {
     // Shadow rays that look up what they may meet by their direction from the light
     // (light_buffer.rs) must see what a traversal of the BVH sees: for the seed's light;

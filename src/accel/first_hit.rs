@@ -8,10 +8,17 @@
 //! background without a single test. On the seed scene this replaces the BVH traversal of
 //! every primary ray (docs/benchmarks/README.md). Tiles that too many boxes cover fall
 //! back to the BVH, which then does better.
+//!
+//! A primitive is listed only in the tiles its surface may cover, not in its whole box's
+//! rectangle: a triangle by its projected outline, a mesh by the rectangles of the boxes of
+//! its own hierarchy, down to boxes a few tiles wide. Around a mesh's silhouette the tiles
+//! its box covers but no part of it does are then background, with no ray traced.
 
+use super::bvh::{Child, WIDTH};
+use super::instance::{Instance, Model};
 use super::primitive::{Primitive, Surface};
 use crate::camera::CameraRays;
-use crate::geometry::Shape;
+use crate::geometry::{Aabb, Shape};
 use glam::DVec3;
 
 /// Tile side, in pixels.
@@ -24,6 +31,16 @@ pub const MAX_CANDIDATES: usize = 12;
 /// pixels, far more than the f32 rounding of a camera ray (about 10⁻⁶ of the field of
 /// view), so no subsample position in a pixel can reach a box that was not listed.
 const MARGIN_PIXELS: f64 = 1.0;
+
+/// A mesh's box whose rectangle covers at most this many tiles marks them all, rather than
+/// being looked into: deeper boxes would cost more to project than they could spare.
+const SMALL_RECTANGLE: u32 = 16;
+
+/// The most boxes of a mesh's hierarchy projected per tile of its whole rectangle, so that
+/// the outline's cost is bounded by the tiles it can spare (past it, boxes mark their whole
+/// rectangles). The 940,544-triangle bunny of `prism bench speed` needs about 0.75 per tile;
+/// with more, its outline hardly tightens.
+const BOXES_PER_TILE: u32 = 1;
 
 /// A box corner this close to the eye's plane (as a fraction of its distance from the
 /// eye) projects unstably; a box with one counts as covering the whole image.
@@ -108,16 +125,26 @@ impl FirstHitTiles {
                 min_t: lower_bound_distance(eye, lo, hi),
             };
             // A triangle covers only part of its box's rectangle: half of it, for each of
-            // the two triangles of a quad such as the seed's floor.
-            let outline = match primitive.surface {
+            // the two triangles of a quad such as the seed's floor. A mesh covers the
+            // rectangles of its leaves' boxes.
+            let outline = match &primitive.surface {
                 Surface::Shape(Shape::Triangle(t)) => {
-                    projected_triangle(&t, eye, forward, rays, width, height)
+                    projected_triangle(t, eye, forward, rays, width, height).map(Outline::Triangle)
                 }
+                Surface::Instance(instance) => mesh_outline(
+                    instance,
+                    (x0, y0, x1, y1),
+                    eye,
+                    forward,
+                    rays,
+                    width,
+                    height,
+                ),
                 _ => None,
             };
             for ty in y0..=y1 {
                 for tx in x0..=x1 {
-                    if outline.is_none_or(|o| o.may_cover_tile(tx, ty)) {
+                    if outline.as_ref().is_none_or(|o| o.may_cover_tile(tx, ty)) {
                         per_tile[(ty * tiles_x + tx) as usize].push(candidate);
                     }
                 }
@@ -260,6 +287,108 @@ fn tile_rectangle(
         return None;
     }
     Some((x0, y0, x1, y1))
+}
+
+/// Where within its box's tile rectangle a primitive's surface may lie, where that is
+/// known more tightly than the whole rectangle.
+#[derive(Clone, Debug)]
+enum Outline {
+    /// A triangle's own outline.
+    Triangle(ProjectedTriangle),
+    /// The tiles of the rectangle whose first corner is (x0, y0), `columns` wide, that the
+    /// boxes of a mesh's hierarchy cover, row by row.
+    Tiles {
+        x0: u32,
+        y0: u32,
+        columns: u32,
+        covered: Vec<bool>,
+    },
+}
+
+impl Outline {
+    /// Whether the surface may cover tile (tx, ty), one of its box's rectangle.
+    fn may_cover_tile(&self, tx: u32, ty: u32) -> bool {
+        match self {
+            Outline::Triangle(triangle) => triangle.may_cover_tile(tx, ty),
+            Outline::Tiles {
+                x0,
+                y0,
+                columns,
+                covered,
+            } => covered[((ty - y0) * columns + (tx - x0)) as usize],
+        }
+    }
+}
+
+/// The tiles of `rectangle` (the instance's box's) that the boxes of a placed mesh's
+/// hierarchy cover, in the scene's space: each box looked into while its own rectangle is
+/// more than `SMALL_RECTANGLE` tiles and the budget lasts, then marked whole. None for a
+/// shape, or a rectangle too small to be worth it. Every box holds its triangles, so a ray
+/// through a tile left unmarked meets none of them (the rectangles are widened as any
+/// primitive's).
+fn mesh_outline(
+    instance: &Instance,
+    rectangle: (u32, u32, u32, u32),
+    eye: DVec3,
+    forward: DVec3,
+    rays: &CameraRays,
+    width: u32,
+    height: u32,
+) -> Option<Outline> {
+    let Model::Mesh { bvh, .. } = &**instance.model() else {
+        return None;
+    };
+    let (x0, y0, x1, y1) = rectangle;
+    let (columns, rows) = (x1 - x0 + 1, y1 - y0 + 1);
+    if columns * rows <= SMALL_RECTANGLE || bvh.nodes.is_empty() {
+        return None;
+    }
+    let mut covered = vec![false; (columns * rows) as usize];
+    let mut mark = |(a0, b0, a1, b1): (u32, u32, u32, u32)| {
+        // Clipped to the instance's rectangle, which holds every box of it up to rounding.
+        for ty in b0.max(y0)..=b1.min(y1) {
+            for tx in a0.max(x0)..=a1.min(x1) {
+                covered[((ty - y0) * columns + (tx - x0)) as usize] = true;
+            }
+        }
+    };
+    let rectangle_of = |b: Aabb| {
+        let b = instance.transform().bounds_to_scene(&b);
+        let (lo, hi) = (b.min.as_dvec3(), b.max.as_dvec3());
+        if !(lo.is_finite() && hi.is_finite()) {
+            return Some(rectangle);
+        }
+        tile_rectangle(lo, hi, eye, forward, rays, width, height)
+    };
+    let mut budget = BOXES_PER_TILE * columns * rows;
+    let mut stack = vec![0u32];
+    while let Some(node) = stack.pop() {
+        let n = &bvh.nodes[node as usize];
+        for lane in 0..WIDTH {
+            let child = n.child(lane);
+            if child == Child::Empty {
+                continue;
+            }
+            let Some(r) = rectangle_of(n.bounds(lane)) else {
+                continue;
+            };
+            budget = budget.saturating_sub(1);
+            match child {
+                Child::Node(inner)
+                    if (r.2 - r.0 + 1) * (r.3 - r.1 + 1) > SMALL_RECTANGLE && budget > 0 =>
+                {
+                    stack.push(inner)
+                }
+                _ => mark(r),
+            }
+        }
+    }
+    Some(Outline::Tiles {
+        x0,
+        y0,
+        columns,
+        covered,
+    })
 }
 
 /// A triangle's outline on the image, in pixels, as three edge functions that are ≥ 0
@@ -519,6 +648,73 @@ mod tests {
         assert!(tiles.at(80, 60).is_none());
         assert!(tiles.census().crowded > 0);
         assert_matches_bvh(&scene, camera, 160, 120);
+    }
+
+    fn bunnies() -> Scene {
+        let path =
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/bunny.toml");
+        crate::scene_file::load_scene(&path).unwrap()
+    }
+
+    #[test]
+    fn views_of_meshes_find_every_nearest_hit_the_bvh_finds() {
+        // Three placed bunnies (one turned half round, one glass) on a floor, from the
+        // scene's camera, from close to one (its box straddles the eye's plane) and from
+        // above at an odd size.
+        let description = bunnies();
+        let scene = prepare(&description);
+        assert_matches_bvh(&scene, description.camera, 200, 150);
+        for (eye, dir, fov) in [
+            (
+                Vec3::new(-8.0, -9.0, -72.0),
+                Vec3::new(0.2, -0.3, -1.0),
+                70.0,
+            ),
+            (
+                Vec3::new(0.0, 30.0, -70.0),
+                Vec3::new(0.1, -1.0, -0.4),
+                50.0,
+            ),
+        ] {
+            let camera = Camera::looking_along(eye, dir, fov).unwrap();
+            assert_matches_bvh(&scene, camera, 161, 97);
+        }
+    }
+
+    #[test]
+    fn a_mesh_is_listed_only_in_the_tiles_its_boxes_cover() {
+        // The clay bunny's box covers a rectangle of tiles; its leaves' boxes leave out the
+        // corners around its silhouette, and those tiles are background.
+        let description = bunnies();
+        let geometry = Geometry::new(&description, AccelOptions::ALL);
+        let scene = geometry.accel();
+        let bunny = geometry.find("clay bunny").unwrap();
+        let index = (0..scene.primitives().len() as u32)
+            .find(|&i| scene.primitive(i).object == bunny)
+            .unwrap();
+        let (w, h) = (400, 300);
+        let rays = description.camera.rays(w, h);
+        let tiles = FirstHitTiles::new(scene.primitives(), &rays, w, h);
+        let bounds = scene.primitive(index).surface.bounds();
+        let eye = rays.eye().as_dvec3();
+        let forward = rays.forward().as_dvec3();
+        let (lo, hi) = (bounds.min.as_dvec3(), bounds.max.as_dvec3());
+        let (x0, y0, x1, y1) = tile_rectangle(lo, hi, eye, forward, &rays, w, h).unwrap();
+        let rectangle = (x1 - x0 + 1) * (y1 - y0 + 1);
+        let mut listed = 0;
+        for ty in 0..h.div_ceil(TILE) {
+            for tx in 0..w.div_ceil(TILE) {
+                let list = tiles.at(tx * TILE, ty * TILE).unwrap();
+                if list.iter().any(|c| c.primitive == index) {
+                    assert!((x0..=x1).contains(&tx) && (y0..=y1).contains(&ty));
+                    listed += 1;
+                }
+            }
+        }
+        assert!(
+            listed > rectangle / 3 && listed * 10 < rectangle * 8,
+            "listed in {listed} of its rectangle's {rectangle} tiles"
+        );
     }
 
     #[test]

@@ -196,6 +196,14 @@ pub struct Instance {
     identity: bool,
     /// The box around it in the scene's space.
     bounds: Aabb,
+    /// Whether `transform` only translates.
+    translation_only: bool,
+}
+
+/// Whether `a` and `b` are the same bits, lane by lane.
+#[inline(always)]
+fn same_bits(a: Vec3A, b: Vec3A) -> bool {
+    a.to_array().map(f32::to_bits) == b.to_array().map(f32::to_bits)
 }
 
 impl Instance {
@@ -205,6 +213,7 @@ impl Instance {
         Self {
             model,
             identity: transform.to_scene() == glam::Affine3A::IDENTITY,
+            translation_only: transform.to_scene().matrix3 == glam::Mat3A::IDENTITY,
             transform,
             bounds,
         }
@@ -229,6 +238,13 @@ impl Instance {
     #[inline(always)]
     fn local(&self, q: &RayQuery) -> RayQuery {
         let ray: Ray = self.transform.ray_to_object(&q.ray);
+        // A placement that moves without turning or scaling (every mesh placed as modelled
+        // is one, once the scene is centred on the eye) maps the direction to itself, and
+        // what a query derives from its direction alone is then the same: only the origin
+        // is new. Compared bit for bit, so a −0 that the map turned into +0 is rebuilt.
+        if self.translation_only && same_bits(ray.dir, q.ray.dir) {
+            return RayQuery { ray, ..*q };
+        }
         RayQuery::new(ray)
     }
 
@@ -347,6 +363,39 @@ mod tests {
             .flat_map(|&[a, b, c, d]| [[a, b, c], [a, c, d]])
             .collect();
         Mesh::new(p, Vec::new(), Vec::<Vec2>::new(), tris).unwrap()
+    }
+
+    /// A placement that only translates takes a ray into the model's space as any other
+    /// does: the same query, field by field and bit for bit, with zero components of
+    /// either sign in the direction.
+    #[test]
+    fn a_translated_query_is_the_query_rebuilt() {
+        let model = Arc::new(Model::mesh(&unit_cube_mesh()));
+        let moved = Transform::new(glam::Affine3A::from_translation(Vec3::new(
+            0.0, -5.0, -22.0,
+        )));
+        let instance = Instance::new(model, moved.unwrap());
+        assert!(instance.translation_only && !instance.identity);
+        let bits = |q: &RayQuery| {
+            let v = |v: Vec3A| v.to_array().map(f32::to_bits);
+            (
+                v(q.ray.origin),
+                v(q.ray.dir),
+                v(q.inv_dir),
+                v(q.shear),
+                q.axes,
+            )
+        };
+        for dir in [
+            Vec3A::new(0.3, -0.2, -1.0),
+            Vec3A::new(-0.0, 0.5, -1.0),
+            Vec3A::new(0.0, -0.0, 1.0),
+            Vec3A::new(1e-30, -2.0, 0.25),
+        ] {
+            let q = RayQuery::new(Ray::new(Vec3A::new(0.1, 5.2, 21.7), dir));
+            let rebuilt = RayQuery::new(instance.transform.ray_to_object(&q.ray));
+            assert_eq!(bits(&instance.local(&q)), bits(&rebuilt), "{dir}");
+        }
     }
 
     /// A mesh's hierarchy finds what a loop over every triangle finds.
