@@ -343,15 +343,7 @@ fn mesh_outline(
     if columns * rows <= SMALL_RECTANGLE || bvh.nodes.is_empty() {
         return None;
     }
-    let mut covered = vec![false; (columns * rows) as usize];
-    let mut mark = |(a0, b0, a1, b1): (u32, u32, u32, u32)| {
-        // Clipped to the instance's rectangle, which holds every box of it up to rounding.
-        for ty in b0.max(y0)..=b1.min(y1) {
-            for tx in a0.max(x0)..=a1.min(x1) {
-                covered[((ty - y0) * columns + (tx - x0)) as usize] = true;
-            }
-        }
-    };
+    let mut coverage = Coverage::new(rectangle);
     let rectangle_of = |b: Aabb| {
         let b = instance.transform().bounds_to_scene(&b);
         let (lo, hi) = (b.min.as_dvec3(), b.max.as_dvec3());
@@ -379,16 +371,80 @@ fn mesh_outline(
                 {
                     stack.push(inner)
                 }
-                _ => mark(r),
+                _ => coverage.add(r),
             }
         }
     }
+    let covered = coverage.covered();
     Some(Outline::Tiles {
         x0,
         y0,
         columns,
         covered,
     })
+}
+
+/// The tiles of a rectangle that some of a set of smaller rectangles cover. Each rectangle
+/// adds to a table of differences (four entries), summed once at the end, so a rectangle
+/// costs the same whether it covers one tile or all of them, and a mesh's outline stays
+/// linear in its boxes and its tiles.
+struct Coverage {
+    x0: u32,
+    y0: u32,
+    columns: u32,
+    rows: u32,
+    /// (columns + 1) × (rows + 1) differences; summed, each tile's count of rectangles.
+    differences: Vec<i32>,
+}
+
+impl Coverage {
+    /// An empty coverage of the tiles of `(x0, y0, x1, y1)` (inclusive).
+    fn new((x0, y0, x1, y1): (u32, u32, u32, u32)) -> Self {
+        let (columns, rows) = (x1 - x0 + 1, y1 - y0 + 1);
+        Self {
+            x0,
+            y0,
+            columns,
+            rows,
+            differences: vec![0; ((columns + 1) * (rows + 1)) as usize],
+        }
+    }
+
+    /// Covers the tiles of `(a0, b0, a1, b1)` (inclusive) that lie in the rectangle.
+    fn add(&mut self, (a0, b0, a1, b1): (u32, u32, u32, u32)) {
+        let (x1, y1) = (self.x0 + self.columns - 1, self.y0 + self.rows - 1);
+        let (a0, a1, b0, b1) = (a0.max(self.x0), a1.min(x1), b0.max(self.y0), b1.min(y1));
+        if a0 > a1 || b0 > b1 {
+            return;
+        }
+        let stride = self.columns + 1;
+        let (i0, i1) = (a0 - self.x0, a1 - self.x0 + 1);
+        let (j0, j1) = (b0 - self.y0, b1 - self.y0 + 1);
+        self.differences[(j0 * stride + i0) as usize] += 1;
+        self.differences[(j0 * stride + i1) as usize] -= 1;
+        self.differences[(j1 * stride + i0) as usize] -= 1;
+        self.differences[(j1 * stride + i1) as usize] += 1;
+    }
+
+    /// Whether each tile is covered, row by row.
+    fn covered(mut self) -> Vec<bool> {
+        let stride = (self.columns + 1) as usize;
+        // Summed along each row, then down each column.
+        for row in self.differences.chunks_mut(stride) {
+            for i in 1..stride {
+                row[i] += row[i - 1];
+            }
+        }
+        for j in 1..=self.rows as usize {
+            for i in 0..stride {
+                self.differences[j * stride + i] += self.differences[(j - 1) * stride + i];
+            }
+        }
+        let columns = self.columns as usize;
+        (0..self.rows as usize * columns)
+            .map(|k| self.differences[(k / columns) * stride + k % columns] > 0)
+            .collect()
+    }
 }
 
 /// A triangle's outline on the image, in pixels, as three edge functions that are ≥ 0
@@ -715,6 +771,33 @@ mod tests {
             listed > rectangle / 3 && listed * 10 < rectangle * 8,
             "listed in {listed} of its rectangle's {rectangle} tiles"
         );
+    }
+
+    #[test]
+    fn coverage_marks_the_tiles_its_rectangles_cover() {
+        // Rectangles inside, across the edges of and wholly outside the covered rectangle,
+        // against marking each tile one by one.
+        let (x0, y0, x1, y1) = (3u32, 5u32, 17u32, 11u32);
+        let mut seed = 0x2545_f491_u32;
+        let mut next = |n: u32| {
+            seed = seed.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+            (seed >> 8) % n
+        };
+        for round in 0..200 {
+            let mut coverage = Coverage::new((x0, y0, x1, y1));
+            let mut naive = vec![false; ((x1 - x0 + 1) * (y1 - y0 + 1)) as usize];
+            for _ in 0..round % 7 {
+                let (a0, b0) = (next(22), next(16));
+                let (a1, b1) = (a0 + next(8), b0 + next(6));
+                coverage.add((a0, b0, a1, b1));
+                for ty in b0.max(y0)..=b1.min(y1) {
+                    for tx in a0.max(x0)..=a1.min(x1) {
+                        naive[((ty - y0) * (x1 - x0 + 1) + tx - x0) as usize] = true;
+                    }
+                }
+            }
+            assert_eq!(coverage.covered(), naive, "round {round}");
+        }
     }
 
     #[test]
