@@ -38,9 +38,11 @@ fn dependencies(features: &[&str]) -> Vec<String> {
         .args(features)
         .output()
         .expect("cargo runs");
+    // Offline, so that the test never reaches the network: `cargo fetch` (which .ci/run
+    // runs first) puts every crate of the lock file in cargo's cache.
     assert!(
         output.status.success(),
-        "{}",
+        "cargo tree {features:?} failed (has `cargo fetch` been run?):\n{}",
         String::from_utf8_lossy(&output.stderr)
     );
     String::from_utf8(output.stdout)
