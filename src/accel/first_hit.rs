@@ -14,11 +14,11 @@
 //! its own hierarchy, down to boxes a few tiles wide. Around a mesh's silhouette the tiles
 //! its box covers but no part of it does are then background, with no ray traced.
 
-use super::bvh::{Child, WIDTH};
-use super::instance::{Instance, Model};
+use super::instance::Instance;
+use super::outline::mesh_coverage;
 use super::primitive::{Primitive, Surface};
 use crate::camera::CameraRays;
-use crate::geometry::{Aabb, Shape};
+use crate::geometry::Shape;
 use glam::DVec3;
 
 /// Tile side, in pixels.
@@ -31,16 +31,6 @@ pub const MAX_CANDIDATES: usize = 12;
 /// pixels, far more than the f32 rounding of a camera ray (about 10⁻⁶ of the field of
 /// view), so no subsample position in a pixel can reach a box that was not listed.
 const MARGIN_PIXELS: f64 = 1.0;
-
-/// A mesh's box whose rectangle covers at most this many tiles marks them all, rather than
-/// being looked into: deeper boxes would cost more to project than they could spare.
-const SMALL_RECTANGLE: u32 = 16;
-
-/// The most boxes of a mesh's hierarchy projected per tile of its whole rectangle, so that
-/// the outline's cost is bounded by the tiles it can spare (past it, boxes mark their whole
-/// rectangles). The 940,544-triangle bunny of `prism bench speed` needs about 0.75 per tile;
-/// with more, its outline hardly tightens.
-const BOXES_PER_TILE: u32 = 1;
 
 /// A box corner this close to the eye's plane (as a fraction of its distance from the
 /// eye) projects unstably; a box with one counts as covering the whole image.
@@ -321,11 +311,8 @@ impl Outline {
 }
 
 /// The tiles of `rectangle` (the instance's box's) that the boxes of a placed mesh's
-/// hierarchy cover, in the scene's space: each box looked into while its own rectangle is
-/// more than `SMALL_RECTANGLE` tiles and the budget lasts, then marked whole. None for a
-/// shape, or a rectangle too small to be worth it. Every box holds its triangles, so a ray
-/// through a tile left unmarked meets none of them (the rectangles are widened as any
-/// primitive's).
+/// hierarchy cover (`outline::mesh_coverage`); None for a shape, or a rectangle too small to
+/// be worth it. The boxes' rectangles are widened as any primitive's.
 fn mesh_outline(
     instance: &Instance,
     rectangle: (u32, u32, u32, u32),
@@ -335,116 +322,20 @@ fn mesh_outline(
     width: u32,
     height: u32,
 ) -> Option<Outline> {
-    let Model::Mesh { bvh, .. } = &**instance.model() else {
-        return None;
-    };
-    let (x0, y0, x1, y1) = rectangle;
-    let (columns, rows) = (x1 - x0 + 1, y1 - y0 + 1);
-    if columns * rows <= SMALL_RECTANGLE || bvh.nodes.is_empty() {
-        return None;
-    }
-    let mut coverage = Coverage::new(rectangle);
-    let rectangle_of = |b: Aabb| {
-        let b = instance.transform().bounds_to_scene(&b);
+    let covered = mesh_coverage(instance, rectangle, |b| {
         let (lo, hi) = (b.min.as_dvec3(), b.max.as_dvec3());
         if !(lo.is_finite() && hi.is_finite()) {
             return Some(rectangle);
         }
         tile_rectangle(lo, hi, eye, forward, rays, width, height)
-    };
-    let mut budget = BOXES_PER_TILE * columns * rows;
-    let mut stack = vec![0u32];
-    while let Some(node) = stack.pop() {
-        let n = &bvh.nodes[node as usize];
-        for lane in 0..WIDTH {
-            let child = n.child(lane);
-            if child == Child::Empty {
-                continue;
-            }
-            let Some(r) = rectangle_of(n.bounds(lane)) else {
-                continue;
-            };
-            budget = budget.saturating_sub(1);
-            match child {
-                Child::Node(inner)
-                    if (r.2 - r.0 + 1) * (r.3 - r.1 + 1) > SMALL_RECTANGLE && budget > 0 =>
-                {
-                    stack.push(inner)
-                }
-                _ => coverage.add(r),
-            }
-        }
-    }
-    let covered = coverage.covered();
+    })?;
+    let (x0, y0, x1, _) = rectangle;
     Some(Outline::Tiles {
         x0,
         y0,
-        columns,
+        columns: x1 - x0 + 1,
         covered,
     })
-}
-
-/// The tiles of a rectangle that some of a set of smaller rectangles cover. Each rectangle
-/// adds to a table of differences (four entries), summed once at the end, so a rectangle
-/// costs the same whether it covers one tile or all of them, and a mesh's outline stays
-/// linear in its boxes and its tiles.
-struct Coverage {
-    x0: u32,
-    y0: u32,
-    columns: u32,
-    rows: u32,
-    /// (columns + 1) × (rows + 1) differences; summed, each tile's count of rectangles.
-    differences: Vec<i32>,
-}
-
-impl Coverage {
-    /// An empty coverage of the tiles of `(x0, y0, x1, y1)` (inclusive).
-    fn new((x0, y0, x1, y1): (u32, u32, u32, u32)) -> Self {
-        let (columns, rows) = (x1 - x0 + 1, y1 - y0 + 1);
-        Self {
-            x0,
-            y0,
-            columns,
-            rows,
-            differences: vec![0; ((columns + 1) * (rows + 1)) as usize],
-        }
-    }
-
-    /// Covers the tiles of `(a0, b0, a1, b1)` (inclusive) that lie in the rectangle.
-    fn add(&mut self, (a0, b0, a1, b1): (u32, u32, u32, u32)) {
-        let (x1, y1) = (self.x0 + self.columns - 1, self.y0 + self.rows - 1);
-        let (a0, a1, b0, b1) = (a0.max(self.x0), a1.min(x1), b0.max(self.y0), b1.min(y1));
-        if a0 > a1 || b0 > b1 {
-            return;
-        }
-        let stride = self.columns + 1;
-        let (i0, i1) = (a0 - self.x0, a1 - self.x0 + 1);
-        let (j0, j1) = (b0 - self.y0, b1 - self.y0 + 1);
-        self.differences[(j0 * stride + i0) as usize] += 1;
-        self.differences[(j0 * stride + i1) as usize] -= 1;
-        self.differences[(j1 * stride + i0) as usize] -= 1;
-        self.differences[(j1 * stride + i1) as usize] += 1;
-    }
-
-    /// Whether each tile is covered, row by row.
-    fn covered(mut self) -> Vec<bool> {
-        let stride = (self.columns + 1) as usize;
-        // Summed along each row, then down each column.
-        for row in self.differences.chunks_mut(stride) {
-            for i in 1..stride {
-                row[i] += row[i - 1];
-            }
-        }
-        for j in 1..=self.rows as usize {
-            for i in 0..stride {
-                self.differences[j * stride + i] += self.differences[(j - 1) * stride + i];
-            }
-        }
-        let columns = self.columns as usize;
-        (0..self.rows as usize * columns)
-            .map(|k| self.differences[(k / columns) * stride + k % columns] > 0)
-            .collect()
-    }
 }
 
 /// A triangle's outline on the image, in pixels, as three edge functions that are ≥ 0
@@ -771,33 +662,6 @@ mod tests {
             listed > rectangle / 3 && listed * 10 < rectangle * 8,
             "listed in {listed} of its rectangle's {rectangle} tiles"
         );
-    }
-
-    #[test]
-    fn coverage_marks_the_tiles_its_rectangles_cover() {
-        // Rectangles inside, across the edges of and wholly outside the covered rectangle,
-        // against marking each tile one by one.
-        let (x0, y0, x1, y1) = (3u32, 5u32, 17u32, 11u32);
-        let mut seed = 0x2545_f491_u32;
-        let mut next = |n: u32| {
-            seed = seed.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
-            (seed >> 8) % n
-        };
-        for round in 0..200 {
-            let mut coverage = Coverage::new((x0, y0, x1, y1));
-            let mut naive = vec![false; ((x1 - x0 + 1) * (y1 - y0 + 1)) as usize];
-            for _ in 0..round % 7 {
-                let (a0, b0) = (next(22), next(16));
-                let (a1, b1) = (a0 + next(8), b0 + next(6));
-                coverage.add((a0, b0, a1, b1));
-                for ty in b0.max(y0)..=b1.min(y1) {
-                    for tx in a0.max(x0)..=a1.min(x1) {
-                        naive[((ty - y0) * (x1 - x0 + 1) + tx - x0) as usize] = true;
-                    }
-                }
-            }
-            assert_eq!(coverage.covered(), naive, "round {round}");
-        }
     }
 
     #[test]

@@ -491,29 +491,20 @@ mod tests {
         }
     }
 
-    #[test]
-    fn every_primitive_a_shadow_ray_meets_is_listed_before_its_far_end() {
-        let (scene, seed_light) = seed();
+    /// Shadow rays from points all over `scene`'s box (and a little beyond it) toward each
+    /// of `lights`: every primitive a ray meets is listed in its cell, before its far end.
+    fn assert_every_occluder_listed(scene: &Accelerator, lights: &[Vec3]) {
         let bounds = scene.bounds().unwrap();
-        // The seed's light above the scene, one among its objects (boxes straddle its
-        // cube's planes), and one far off to the side (a narrow window).
-        for light in [
-            seed_light,
-            Vec3::new(0.0, -5.0, -70.0),
-            Vec3::new(-900.0, 30.0, 400.0),
-        ] {
+        for &light in lights {
             let buffer = LightBuffer::new(light, scene.primitives());
             let mut rng = Lcg(7);
             let mut blocked = 0;
             for _ in 0..20_000 {
-                // Points all over the scene's box (and a little beyond it).
                 let f = Vec3::new(rng.next(), rng.next(), rng.next()) * 1.2 - 0.1;
                 let origin = bounds.min + (bounds.max - bounds.min) * f;
                 let to_light = light - origin;
                 let q = RayQuery::new(Ray::new(origin, to_light));
-                let listed = buffer
-                    .at(-to_light)
-                    .expect("the seed scene has no crowded cell");
+                let listed = buffer.at(-to_light).expect("no cell is crowded");
                 let distance_sq = to_light.length_squared();
                 for (i, p) in scene.primitives().iter().enumerate() {
                     if p.surface.intersect(&q, 1.0).is_some() {
@@ -531,6 +522,42 @@ mod tests {
                 "the test must meet occluders: {blocked} ({light})"
             );
         }
+    }
+
+    #[test]
+    fn every_primitive_a_shadow_ray_meets_is_listed_before_its_far_end() {
+        // The seed's light above the scene, one among its objects (boxes straddle its
+        // cube's planes), and one far off to the side (a narrow window).
+        let (scene, seed_light) = seed();
+        let lights = [
+            seed_light,
+            Vec3::new(0.0, -5.0, -70.0),
+            Vec3::new(-900.0, 30.0, 400.0),
+        ];
+        assert_every_occluder_listed(&scene, &lights);
+    }
+
+    /// The three placed bunnies of assets/scenes/bunny.toml on their floor, and the light.
+    fn bunnies() -> (Accelerator, Vec3) {
+        let path =
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/bunny.toml");
+        let scene = crate::scene_file::load_scene(&path).unwrap();
+        let geometry = Geometry::new(&scene, AccelOptions::ALL);
+        let light = scene.lights.iter().find_map(|l| l.position()).unwrap();
+        (geometry.accel().clone(), light)
+    }
+
+    #[test]
+    fn every_placed_mesh_a_shadow_ray_meets_is_listed() {
+        // Placed meshes, each listed as one occluder: the scene's light, one among the
+        // bunnies (their boxes straddle its cube's planes) and one far off.
+        let (scene, light) = bunnies();
+        let lights = [
+            light,
+            Vec3::new(-6.0, -8.0, -75.0),
+            Vec3::new(700.0, 90.0, -300.0),
+        ];
+        assert_every_occluder_listed(&scene, &lights);
     }
 
     #[test]

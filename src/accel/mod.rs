@@ -24,6 +24,7 @@ mod first_hit;
 mod instance;
 mod isolated;
 mod light_buffer;
+mod outline;
 mod primitive;
 mod wide_node;
 
