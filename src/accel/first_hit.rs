@@ -18,7 +18,7 @@ use super::instance::Instance;
 use super::outline::mesh_coverage;
 use super::primitive::{Primitive, Surface};
 use crate::camera::CameraRays;
-use crate::geometry::Shape;
+use crate::geometry::{Aabb, Shape};
 use glam::DVec3;
 
 /// Tile side, in pixels.
@@ -69,19 +69,19 @@ impl FirstHitTiles {
         let eye = rays.eye().as_dvec3();
         let forward = rays.forward().as_dvec3();
 
-        // Each primitive's tile rectangle (inclusive), or None when no primary ray can
-        // reach it.
+        // A box's tile rectangle (inclusive), or None when no primary ray can reach it.
+        let rectangle_of = |b: &Aabb| {
+            let (lo, hi) = (b.min.as_dvec3(), b.max.as_dvec3());
+            if !(lo.is_finite() && hi.is_finite()) {
+                Some((0, 0, tiles_x - 1, tiles_y - 1))
+            } else {
+                tile_rectangle(lo, hi, eye, forward, rays, width, height)
+            }
+        };
+        // Each primitive's.
         let rectangles: Vec<Option<(u32, u32, u32, u32)>> = primitives
             .iter()
-            .map(|primitive| {
-                let bounds = primitive.surface.bounds();
-                let (lo, hi) = (bounds.min.as_dvec3(), bounds.max.as_dvec3());
-                if !(lo.is_finite() && hi.is_finite()) {
-                    Some((0, 0, tiles_x - 1, tiles_y - 1))
-                } else {
-                    tile_rectangle(lo, hi, eye, forward, rays, width, height)
-                }
-            })
+            .map(|primitive| rectangle_of(&primitive.surface.bounds()))
             .collect();
         // The lists' total length is at most the rectangles' total area. Past the budget,
         // crowds of overlapping boxes would cost time and memory that grow with their
@@ -121,15 +121,9 @@ impl FirstHitTiles {
                 Surface::Shape(Shape::Triangle(t)) => {
                     projected_triangle(t, eye, forward, rays, width, height).map(Outline::Triangle)
                 }
-                Surface::Instance(instance) => mesh_outline(
-                    instance,
-                    (x0, y0, x1, y1),
-                    eye,
-                    forward,
-                    rays,
-                    width,
-                    height,
-                ),
+                Surface::Instance(instance) => {
+                    mesh_outline(instance, (x0, y0, x1, y1), rectangle_of)
+                }
                 _ => None,
             };
             for ty in y0..=y1 {
@@ -311,24 +305,14 @@ impl Outline {
 }
 
 /// The tiles of `rectangle` (the instance's box's) that the boxes of a placed mesh's
-/// hierarchy cover (`outline::mesh_coverage`); None for a shape, or a rectangle too small to
-/// be worth it. The boxes' rectangles are widened as any primitive's.
+/// hierarchy cover (`outline::mesh_coverage`), each box's found by `rectangle_of` as any
+/// primitive's; None for a shape, or a rectangle too small to be worth it.
 fn mesh_outline(
     instance: &Instance,
     rectangle: (u32, u32, u32, u32),
-    eye: DVec3,
-    forward: DVec3,
-    rays: &CameraRays,
-    width: u32,
-    height: u32,
+    rectangle_of: impl Fn(&Aabb) -> Option<(u32, u32, u32, u32)>,
 ) -> Option<Outline> {
-    let covered = mesh_coverage(instance, rectangle, |b| {
-        let (lo, hi) = (b.min.as_dvec3(), b.max.as_dvec3());
-        if !(lo.is_finite() && hi.is_finite()) {
-            return Some(rectangle);
-        }
-        tile_rectangle(lo, hi, eye, forward, rays, width, height)
-    })?;
+    let covered = mesh_coverage(instance, rectangle, rectangle_of)?;
     let (x0, y0, x1, _) = rectangle;
     Some(Outline::Tiles {
         x0,
@@ -597,18 +581,12 @@ mod tests {
         assert_matches_bvh(&scene, camera, 160, 120);
     }
 
-    fn bunnies() -> Scene {
-        let path =
-            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/bunny.toml");
-        crate::scene_file::load_scene(&path).unwrap()
-    }
-
     #[test]
     fn views_of_meshes_find_every_nearest_hit_the_bvh_finds() {
         // Three placed bunnies (one turned half round, one glass) on a floor, from the
         // scene's camera, from close to one (its box straddles the eye's plane) and from
         // above at an odd size.
-        let description = bunnies();
+        let description = crate::accel::bunny_scene();
         let scene = prepare(&description);
         assert_matches_bvh(&scene, description.camera, 200, 150);
         for (eye, dir, fov) in [
@@ -632,7 +610,7 @@ mod tests {
     fn a_mesh_is_listed_only_in_the_tiles_its_boxes_cover() {
         // The clay bunny's box covers a rectangle of tiles; its leaves' boxes leave out the
         // corners around its silhouette, and those tiles are background.
-        let description = bunnies();
+        let description = crate::accel::bunny_scene();
         let geometry = Geometry::new(&description, AccelOptions::ALL);
         let scene = geometry.accel();
         let bunny = geometry.find("clay bunny").unwrap();

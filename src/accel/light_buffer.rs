@@ -539,9 +539,7 @@ mod tests {
 
     /// The three placed bunnies of assets/scenes/bunny.toml on their floor, and the light.
     fn bunnies() -> (Accelerator, Vec3) {
-        let path =
-            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/bunny.toml");
-        let scene = crate::scene_file::load_scene(&path).unwrap();
+        let scene = crate::accel::bunny_scene();
         let geometry = Geometry::new(&scene, AccelOptions::ALL);
         let light = scene.lights.iter().find_map(|l| l.position()).unwrap();
         (geometry.accel().clone(), light)

@@ -38,12 +38,10 @@ pub(super) fn mesh_coverage(
     let Model::Mesh { bvh, .. } = &**instance.model() else {
         return None;
     };
-    let (x0, y0, x1, y1) = rectangle;
     let area = |(a0, b0, a1, b1): CellRectangle| (a1 - a0 + 1) * (b1 - b0 + 1);
     if area(rectangle) <= SMALL_RECTANGLE || bvh.nodes.is_empty() {
         return None;
     }
-    debug_assert!(x0 <= x1 && y0 <= y1);
     let mut coverage = Coverage::new(rectangle);
     let mut budget = BOXES_PER_CELL * area(rectangle);
     let mut stack = vec![0u32];
@@ -82,7 +80,7 @@ struct Coverage {
 
 impl Coverage {
     /// An empty coverage of the cells of `(x0, y0, x1, y1)` (inclusive).
-    fn new((x0, y0, x1, y1): (u32, u32, u32, u32)) -> Self {
+    fn new((x0, y0, x1, y1): CellRectangle) -> Self {
         let (columns, rows) = (x1 - x0 + 1, y1 - y0 + 1);
         Self {
             x0,
@@ -94,7 +92,7 @@ impl Coverage {
     }
 
     /// Covers the cells of `(a0, b0, a1, b1)` (inclusive) that lie in the rectangle.
-    fn add(&mut self, (a0, b0, a1, b1): (u32, u32, u32, u32)) {
+    fn add(&mut self, (a0, b0, a1, b1): CellRectangle) {
         let (x1, y1) = (self.x0 + self.columns - 1, self.y0 + self.rows - 1);
         let (a0, a1, b0, b1) = (a0.max(self.x0), a1.min(x1), b0.max(self.y0), b1.min(y1));
         if a0 > a1 || b0 > b1 {
