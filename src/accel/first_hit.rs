@@ -586,7 +586,7 @@ mod tests {
         // Three placed bunnies (one turned half round, one glass) on a floor, from the
         // scene's camera, from close to one (its box straddles the eye's plane) and from
         // above at an odd size.
-        let description = crate::accel::bunny_scene();
+        let description = crate::accel::tests::bunny_scene();
         let scene = prepare(&description);
         assert_matches_bvh(&scene, description.camera, 200, 150);
         for (eye, dir, fov) in [
@@ -610,7 +610,7 @@ mod tests {
     fn a_mesh_is_listed_only_in_the_tiles_its_boxes_cover() {
         // The clay bunny's box covers a rectangle of tiles; its leaves' boxes leave out the
         // corners around its silhouette, and those tiles are background.
-        let description = crate::accel::bunny_scene();
+        let description = crate::accel::tests::bunny_scene();
         let geometry = Geometry::new(&description, AccelOptions::ALL);
         let scene = geometry.accel();
         let bunny = geometry.find("clay bunny").unwrap();

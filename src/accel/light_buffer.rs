@@ -539,7 +539,7 @@ mod tests {
 
     /// The three placed bunnies of assets/scenes/bunny.toml on their floor, and the light.
     fn bunnies() -> (Accelerator, Vec3) {
-        let scene = crate::accel::bunny_scene();
+        let scene = crate::accel::tests::bunny_scene();
         let geometry = Geometry::new(&scene, AccelOptions::ALL);
         let light = scene.lights.iter().find_map(|l| l.position()).unwrap();
         (geometry.accel().clone(), light)

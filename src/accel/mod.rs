@@ -40,14 +40,6 @@ pub use first_hit::MAX_CANDIDATES;
 /// The most occluders a light-buffer cell lists before it is left to the BVH.
 pub use light_buffer::MAX_OCCLUDERS;
 
-/// The placed bunnies of assets/scenes/bunny.toml, for the tests of the layers that treat
-/// meshes apart (first-hit tiles, light buffers).
-#[cfg(test)]
-fn bunny_scene() -> crate::scene::Scene {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/bunny.toml");
-    crate::scene_file::load_scene(&path).unwrap()
-}
-
 use crate::appearance::ShadowFilters;
 use crate::camera::CameraRays;
 use crate::geometry::{Aabb, Ray, RayQuery, ShapeHit, SurfacePoint, UvFrame};
@@ -568,5 +560,16 @@ impl CameraView {
     /// The first-hit tiles, when the option built them.
     pub fn tiles(&self) -> Option<&FirstHitTiles> {
         self.tiles.as_ref()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    /// The placed bunnies of assets/scenes/bunny.toml, for the tests of the layers that
+    /// treat meshes apart (first-hit tiles, light buffers).
+    pub(super) fn bunny_scene() -> crate::scene::Scene {
+        let path =
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/bunny.toml");
+        crate::scene_file::load_scene(&path).unwrap()
     }
 }
