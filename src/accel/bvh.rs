@@ -63,6 +63,33 @@ impl<T: Copy, const N: usize> Stack<T, N> {
 /// MAX_DEPTH + 1 nodes.
 const STACK_SIZE: usize = (WIDTH - 1) * (MAX_DEPTH + 1) + WIDTH;
 
+/// `Bvh::closest_with`'s leaf test for `hit`, which tests one primitive: each of the
+/// leaf's in order, against the nearest hit found before it.
+#[inline(always)]
+fn each_item(
+    mut hit: impl FnMut(u32, f32) -> Option<f32>,
+) -> impl FnMut(std::ops::Range<u32>, f32) -> Option<f32> {
+    #[inline(always)]
+    move |items, mut t_max| {
+        let mut nearest = None;
+        for i in items {
+            if let Some(t) = hit(i, t_max) {
+                t_max = t;
+                nearest = Some(t);
+            }
+        }
+        nearest
+    }
+}
+
+/// `Bvh::visit_with`'s leaf visit for `visit`, which is offered one primitive: each of the
+/// leaf's in order, until it returns false.
+#[inline(always)]
+fn every_item(mut visit: impl FnMut(u32) -> bool) -> impl FnMut(std::ops::Range<u32>) -> bool {
+    #[inline(always)]
+    move |mut items| items.all(&mut visit)
+}
+
 /// A child waiting on the closest-hit stack, with the distance at which the ray enters it.
 #[derive(Clone, Copy)]
 struct Pending {
@@ -194,7 +221,7 @@ impl Bvh {
             // SAFETY: an `Avx` exists only where the processor has AVX2.
             return unsafe { self.closest_avx2(avx, q, t_max, hit) };
         }
-        self.closest_with(Halves, q, t_max, hit)
+        self.closest_with(Halves, q, t_max, each_item(hit))
     }
 
     /// `closest` compiled for AVX2, whose instructions the box tests inline.
@@ -207,16 +234,19 @@ impl Bvh {
         t_max: f32,
         hit: impl FnMut(u32, f32) -> Option<f32>,
     ) -> f32 {
-        self.closest_with(avx, q, t_max, hit)
+        self.closest_with(avx, q, t_max, each_item(hit))
     }
 
+    /// `closest` in the lanes of `l`, a leaf at a time: `leaf(primitives, t_max)` tests the
+    /// primitives of a leaf (a range, in stored order) and returns the distance of the
+    /// nearest hit it found nearer than `t_max`.
     #[inline(always)]
-    fn closest_with<L: Lanes8>(
+    pub(super) fn closest_with<L: Lanes8>(
         &self,
         l: L,
         q: &RayQuery,
         mut t_max: f32,
-        mut hit: impl FnMut(u32, f32) -> Option<f32>,
+        mut leaf: impl FnMut(std::ops::Range<u32>, f32) -> Option<f32>,
     ) -> f32 {
         if self.nodes.is_empty() || !traceable(q) {
             return t_max;
@@ -290,10 +320,8 @@ impl Bvh {
                     node = p.child as usize;
                     break;
                 }
-                for i in p.child..p.child + p.count {
-                    if let Some(t) = hit(i, t_max) {
-                        t_max = t;
-                    }
+                if let Some(t) = leaf(p.child..p.child + p.count, t_max) {
+                    t_max = t;
                 }
             }
         }
@@ -308,23 +336,25 @@ impl Bvh {
             // SAFETY: an `Avx` exists only where the processor has AVX2.
             return unsafe { self.visit_avx2(avx, q, t_max, visit) };
         }
-        self.visit_with(Halves, q, t_max, visit)
+        self.visit_with(Halves, q, t_max, every_item(visit))
     }
 
     /// `visit` compiled for AVX2, whose instructions the box tests inline.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
     fn visit_avx2(&self, avx: Avx, q: &RayQuery, t_max: f32, visit: impl FnMut(u32) -> bool) {
-        self.visit_with(avx, q, t_max, visit)
+        self.visit_with(avx, q, t_max, every_item(visit))
     }
 
+    /// `visit` in the lanes of `l`, a leaf at a time: `leaf(primitives)` is offered the
+    /// primitives of a leaf (a range, in stored order) and returns false to end the walk.
     #[inline(always)]
-    fn visit_with<L: Lanes8>(
+    pub(super) fn visit_with<L: Lanes8>(
         &self,
         l: L,
         q: &RayQuery,
         t_max: f32,
-        mut visit: impl FnMut(u32) -> bool,
+        mut leaf: impl FnMut(std::ops::Range<u32>) -> bool,
     ) {
         if self.nodes.is_empty() || !traceable(q) {
             return;
@@ -347,10 +377,8 @@ impl Bvh {
                     }
                 } else {
                     let first = n.child[lane & LANE];
-                    for i in first..first + n.count[lane & LANE] {
-                        if !visit(i) {
-                            return;
-                        }
+                    if !leaf(first..first + n.count[lane & LANE]) {
+                        return;
                     }
                 }
             }
@@ -678,16 +706,26 @@ mod tests {
                 stored[i as usize].intersect(&ray, t_max)
             };
             let (mut baseline, mut wide) = (Vec::new(), Vec::new());
-            let a = bvh.closest_with(Halves, &q, f32::INFINITY, |i, t| steps(&mut baseline, i, t));
+            let a = bvh.closest_with(
+                Halves,
+                &q,
+                f32::INFINITY,
+                each_item(|i, t| steps(&mut baseline, i, t)),
+            );
             // SAFETY: `avx` exists, so the processor has AVX2.
             let b =
                 unsafe { bvh.closest_avx2(avx, &q, f32::INFINITY, |i, t| steps(&mut wide, i, t)) };
             assert_eq!((a.to_bits(), &baseline), (b.to_bits(), &wide), "{ray:?}");
             let (mut baseline, mut wide) = (Vec::new(), Vec::new());
-            bvh.visit_with(Halves, &q, 400.0, |i| {
-                baseline.push(i);
-                true
-            });
+            bvh.visit_with(
+                Halves,
+                &q,
+                400.0,
+                every_item(|i| {
+                    baseline.push(i);
+                    true
+                }),
+            );
             // SAFETY: as above.
             unsafe {
                 bvh.visit_avx2(avx, &q, 400.0, |i| {

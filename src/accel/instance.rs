@@ -6,9 +6,12 @@
 use super::bvh::{Bvh, LeafCost};
 use super::bvh_build::BinaryBvh;
 use crate::geometry::{
-    Aabb, GROUP_WIDTH, GroupRay, HitDetail, Mesh, Ray, RayQuery, Shape, ShapeHit, SurfacePoint,
-    Transform, TriangleGroup, UvFrame,
+    Aabb, GROUP_WIDTH, GroupPair, GroupRay, HitDetail, LaneRay, Mesh, Ray, RayQuery, Shape,
+    ShapeHit, SurfacePoint, Transform, TriangleGroup, UvFrame,
 };
+#[cfg(target_arch = "x86_64")]
+use crate::simd::Avx;
+use crate::simd::{Halves, Lanes8};
 use glam::Vec3A;
 use std::sync::Arc;
 
@@ -104,17 +107,12 @@ impl Model {
     fn intersect_after(&self, q: &RayQuery, t_min: f32, t_max: f32) -> Option<ShapeHit> {
         match self {
             Model::Mesh { bvh, groups, .. } => {
-                let ray = GroupRay::new(q);
-                let mut best = None;
-                bvh.closest(q, t_max, |g, t_max| {
-                    let (triangle, hit) = groups[g as usize].closest(q, &ray, t_min, t_max)?;
-                    best = Some(ShapeHit {
-                        t: hit.t,
-                        detail: HitDetail::Mesh { triangle, b: hit.b },
-                    });
-                    Some(hit.t)
-                });
-                best
+                #[cfg(target_arch = "x86_64")]
+                if let Some(avx) = crate::isa::avx2_lanes() {
+                    // SAFETY: an `Avx` exists only where the processor has AVX2.
+                    return unsafe { mesh_closest_avx2(avx, bvh, groups, q, t_min, t_max) };
+                }
+                mesh_closest(Halves, bvh, groups, q, t_min, t_max)
             }
             Model::Shape(shape) => shape.intersect_after(q, t_min, t_max),
         }
@@ -124,13 +122,12 @@ impl Model {
     fn occludes(&self, q: &RayQuery, t_max: f32) -> bool {
         match self {
             Model::Mesh { bvh, groups, .. } => {
-                let ray = GroupRay::new(q);
-                let mut hit = false;
-                bvh.visit(q, t_max, |g| {
-                    hit = groups[g as usize].any(q, &ray, 0.0, t_max);
-                    !hit
-                });
-                hit
+                #[cfg(target_arch = "x86_64")]
+                if let Some(avx) = crate::isa::avx2_lanes() {
+                    // SAFETY: an `Avx` exists only where the processor has AVX2.
+                    return unsafe { mesh_occludes_avx2(avx, bvh, groups, q, t_max) };
+                }
+                mesh_occludes(Halves, bvh, groups, q, t_max)
             }
             Model::Shape(shape) => shape.intersect(q, t_max).is_some(),
         }
@@ -184,6 +181,124 @@ impl Model {
             (_, detail) => unreachable!("hit {detail:?} does not belong to a mesh"),
         }
     }
+}
+
+/// A leaf's groups, two at a time while two are left (a leaf holds one or two groups, more
+/// only where many triangles share one centre).
+enum LeafGroups<'g> {
+    Pair(GroupPair<'g>),
+    One(&'g TriangleGroup),
+}
+
+/// The groups of a leaf (`leaf`), in order, two at a time.
+#[inline(always)]
+fn in_pairs(leaf: &[TriangleGroup]) -> impl Iterator<Item = LeafGroups<'_>> {
+    leaf.chunks(2).map(|groups| match groups {
+        [first, second] => LeafGroups::Pair(GroupPair { first, second }),
+        [one] => LeafGroups::One(one),
+        _ => unreachable!("chunks of one or two"),
+    })
+}
+
+/// The nearest hit along `q` with t in (t_min, t_max) on the mesh of `bvh` and `groups`,
+/// walked in the lanes of `l`: a leaf's groups are tested two at a time (`GroupPair`), each
+/// pair finding what its groups find one after the other.
+#[inline(always)]
+fn mesh_closest<L: Lanes8>(
+    l: L,
+    bvh: &Bvh,
+    groups: &[TriangleGroup],
+    q: &RayQuery,
+    t_min: f32,
+    t_max: f32,
+) -> Option<ShapeHit> {
+    let ray = GroupRay::new(q);
+    let pair_ray = LaneRay::in_lanes(l, q);
+    let mut best = None;
+    bvh.closest_with(
+        l,
+        q,
+        t_max,
+        #[inline(always)]
+        |leaf, mut t_max| {
+            let mut nearest = None;
+            for groups in in_pairs(&groups[leaf.start as usize..leaf.end as usize]) {
+                let found = match groups {
+                    LeafGroups::Pair(pair) => pair.closest(l, q, &pair_ray, t_min, t_max),
+                    LeafGroups::One(group) => group.closest(q, &ray, t_min, t_max),
+                };
+                if let Some((triangle, hit)) = found {
+                    t_max = hit.t;
+                    nearest = Some(hit.t);
+                    best = Some(ShapeHit {
+                        t: hit.t,
+                        detail: HitDetail::Mesh { triangle, b: hit.b },
+                    });
+                }
+            }
+            nearest
+        },
+    );
+    best
+}
+
+/// `mesh_closest` compiled for AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn mesh_closest_avx2(
+    avx: Avx,
+    bvh: &Bvh,
+    groups: &[TriangleGroup],
+    q: &RayQuery,
+    t_min: f32,
+    t_max: f32,
+) -> Option<ShapeHit> {
+    mesh_closest(avx, bvh, groups, q, t_min, t_max)
+}
+
+/// Whether anything of the mesh of `bvh` and `groups` lies on the segment (0, t_max) of
+/// `q`, walked as `mesh_closest` walks it.
+#[inline(always)]
+fn mesh_occludes<L: Lanes8>(
+    l: L,
+    bvh: &Bvh,
+    groups: &[TriangleGroup],
+    q: &RayQuery,
+    t_max: f32,
+) -> bool {
+    let ray = GroupRay::new(q);
+    let pair_ray = LaneRay::in_lanes(l, q);
+    let mut hit = false;
+    bvh.visit_with(
+        l,
+        q,
+        t_max,
+        #[inline(always)]
+        |leaf| {
+            hit =
+                in_pairs(&groups[leaf.start as usize..leaf.end as usize]).any(
+                    |groups| match groups {
+                        LeafGroups::Pair(pair) => pair.any(l, q, &pair_ray, 0.0, t_max),
+                        LeafGroups::One(group) => group.any(q, &ray, 0.0, t_max),
+                    },
+                );
+            !hit
+        },
+    );
+    hit
+}
+
+/// `mesh_occludes` compiled for AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn mesh_occludes_avx2(
+    avx: Avx,
+    bvh: &Bvh,
+    groups: &[TriangleGroup],
+    q: &RayQuery,
+    t_max: f32,
+) -> bool {
+    mesh_occludes(avx, bvh, groups, q, t_max)
 }
 
 /// A model placed in the scene by a transform.

@@ -4,7 +4,7 @@
 
 use crate::geometry::{Aabb, RayQuery};
 use crate::numerics::gamma;
-use crate::simd::{Halves, Lanes8};
+use crate::simd::{Halves, Lanes, Lanes8};
 use glam::Vec3A;
 
 /// Children per node: one per lane of the box test.

@@ -1,7 +1,8 @@
-//! Eight f32 lanes for the wide BVH's box test, in one of two encodings chosen at run time
+//! Eight f32 lanes for the wide BVH's box test and for a mesh leaf's two groups of
+//! triangles at once (`GroupPair`), in one of two encodings chosen at run time
 //! (`isa.rs`): two four-lane halves (`Halves`, SSE2 on x86-64, plain arrays elsewhere) on
 //! any processor, or one AVX register (`Avx`) where the processor has AVX2. Both run, lane
-//! by lane, the same IEEE operations as `F32x4`, so a box test finds bit for bit the same
+//! by lane, the same IEEE operations as `F32x4`, so a test finds bit for bit the same
 //! distances and masks in either: the choice changes the speed, never the image.
 //!
 //! The lanes are operated on through an engine value (`Lanes8`) rather than methods on the
@@ -9,42 +10,31 @@
 //! one is the proof that its instructions may run.
 
 use super::four::F32x4;
+use super::lanes::Lanes;
 
-/// Eight lanes' operations, as the box test needs them. `Self` is the engine (a proof of
-/// the instruction set), `Self::V` its vector.
-pub trait Lanes8: Copy {
-    type V: Copy;
-    fn splat(self, v: f32) -> Self::V;
+/// Eight lanes' operations (`Lanes`, whose arrays are eight long), and what the box test
+/// and the pairs of triangle groups need beyond them. `Self` is the engine (a proof of the
+/// instruction set), `Self::V` its vector.
+pub trait Lanes8: Lanes<Array = [f32; 8]> {
     fn load(self, a: &[f32; 8]) -> Self::V;
-    fn to_array(self, v: Self::V) -> [f32; 8];
-    fn sub(self, a: Self::V, b: Self::V) -> Self::V;
-    fn mul(self, a: Self::V, b: Self::V) -> Self::V;
-    /// Per lane `if a > b { a } else { b }` (a NaN in `a` yields `b`, as `F32x4::max_or`).
-    fn max_or(self, a: Self::V, b: Self::V) -> Self::V;
     /// Per lane `if a < b { a } else { b }`.
     fn min_or(self, a: Self::V, b: Self::V) -> Self::V;
-    /// Bit i set where lane i of `a` ≤ lane i of `b`.
-    fn le_mask(self, a: Self::V, b: Self::V) -> u32;
+    /// Lanes 0..4 from `lo`, 4..8 from `hi`.
+    fn join(self, lo: F32x4, hi: F32x4) -> Self::V;
 }
 
 /// Eight lanes as two `F32x4`: the baseline, on every processor.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Halves;
 
-impl Lanes8 for Halves {
+impl Lanes for Halves {
     type V = [F32x4; 2];
+    type Array = [f32; 8];
+    const WIDTH: usize = 8;
 
     #[inline(always)]
     fn splat(self, v: f32) -> Self::V {
         [F32x4::splat(v); 2]
-    }
-
-    #[inline(always)]
-    fn load(self, a: &[f32; 8]) -> Self::V {
-        [
-            F32x4::from_array([a[0], a[1], a[2], a[3]]),
-            F32x4::from_array([a[4], a[5], a[6], a[7]]),
-        ]
     }
 
     #[inline(always)]
@@ -69,13 +59,58 @@ impl Lanes8 for Halves {
     }
 
     #[inline(always)]
+    fn le_mask(self, a: Self::V, b: Self::V) -> u32 {
+        a[0].le_mask(b[0]) | (a[1].le_mask(b[1]) << 4)
+    }
+
+    #[inline(always)]
+    fn add(self, a: Self::V, b: Self::V) -> Self::V {
+        [a[0] + b[0], a[1] + b[1]]
+    }
+
+    #[inline(always)]
+    fn div(self, a: Self::V, b: Self::V) -> Self::V {
+        [a[0] / b[0], a[1] / b[1]]
+    }
+
+    #[inline(always)]
+    fn abs(self, a: Self::V) -> Self::V {
+        [a[0].abs(), a[1].abs()]
+    }
+
+    #[inline(always)]
+    fn lt_mask(self, a: Self::V, b: Self::V) -> u32 {
+        a[0].lt_mask(b[0]) | (a[1].lt_mask(b[1]) << 4)
+    }
+
+    #[inline(always)]
+    fn eq_mask(self, a: Self::V, b: Self::V) -> u32 {
+        a[0].eq_mask(b[0]) | (a[1].eq_mask(b[1]) << 4)
+    }
+
+    #[inline(always)]
+    fn nan_mask(self, a: Self::V) -> u32 {
+        a[0].nan_mask() | (a[1].nan_mask() << 4)
+    }
+}
+
+impl Lanes8 for Halves {
+    #[inline(always)]
+    fn load(self, a: &[f32; 8]) -> Self::V {
+        [
+            F32x4::from_array([a[0], a[1], a[2], a[3]]),
+            F32x4::from_array([a[4], a[5], a[6], a[7]]),
+        ]
+    }
+
+    #[inline(always)]
     fn min_or(self, a: Self::V, b: Self::V) -> Self::V {
         [a[0].min_or(b[0]), a[1].min_or(b[1])]
     }
 
     #[inline(always)]
-    fn le_mask(self, a: Self::V, b: Self::V) -> u32 {
-        a[0].le_mask(b[0]) | (a[1].le_mask(b[1]) << 4)
+    fn join(self, lo: F32x4, hi: F32x4) -> Self::V {
+        [lo, hi]
     }
 }
 
@@ -85,6 +120,8 @@ pub use avx::Avx;
 #[cfg(target_arch = "x86_64")]
 mod avx {
     use crate::simd::eight::Lanes8;
+    use crate::simd::four::F32x4;
+    use crate::simd::lanes::Lanes;
     use std::arch::x86_64::*;
 
     /// Eight lanes in one AVX register. Only `new` makes one, and only on a processor with
@@ -103,17 +140,14 @@ mod avx {
     // SAFETY (every `unsafe` below): an `Avx` exists only where the processor has AVX2,
     // which includes AVX, all these intrinsics require; the loads and stores name 32
     // readable or writable bytes and are unaligned.
-    impl Lanes8 for Avx {
+    impl Lanes for Avx {
         type V = __m256;
+        type Array = [f32; 8];
+        const WIDTH: usize = 8;
 
         #[inline(always)]
         fn splat(self, v: f32) -> Self::V {
             unsafe { _mm256_set1_ps(v) }
-        }
-
-        #[inline(always)]
-        fn load(self, a: &[f32; 8]) -> Self::V {
-            unsafe { _mm256_loadu_ps(a.as_ptr()) }
         }
 
         #[inline(always)]
@@ -139,15 +173,58 @@ mod avx {
             unsafe { _mm256_max_ps(a, b) }
         }
 
+        // Ordered and signalling-free, as SSE's cmpleps: false where either is NaN.
+        #[inline(always)]
+        fn le_mask(self, a: Self::V, b: Self::V) -> u32 {
+            unsafe { _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LE_OQ>(a, b)) as u32 }
+        }
+
+        #[inline(always)]
+        fn add(self, a: Self::V, b: Self::V) -> Self::V {
+            unsafe { _mm256_add_ps(a, b) }
+        }
+
+        #[inline(always)]
+        fn div(self, a: Self::V, b: Self::V) -> Self::V {
+            unsafe { _mm256_div_ps(a, b) }
+        }
+
+        #[inline(always)]
+        fn abs(self, a: Self::V) -> Self::V {
+            unsafe { _mm256_andnot_ps(_mm256_set1_ps(-0.0), a) }
+        }
+
+        // As SSE's cmpltps, cmpeqps and cmpunordps: ordered comparisons false on NaN.
+        #[inline(always)]
+        fn lt_mask(self, a: Self::V, b: Self::V) -> u32 {
+            unsafe { _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LT_OQ>(a, b)) as u32 }
+        }
+
+        #[inline(always)]
+        fn eq_mask(self, a: Self::V, b: Self::V) -> u32 {
+            unsafe { _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_EQ_OQ>(a, b)) as u32 }
+        }
+
+        #[inline(always)]
+        fn nan_mask(self, a: Self::V) -> u32 {
+            unsafe { _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_UNORD_Q>(a, a)) as u32 }
+        }
+    }
+
+    impl Lanes8 for Avx {
+        #[inline(always)]
+        fn load(self, a: &[f32; 8]) -> Self::V {
+            unsafe { _mm256_loadu_ps(a.as_ptr()) }
+        }
+
         #[inline(always)]
         fn min_or(self, a: Self::V, b: Self::V) -> Self::V {
             unsafe { _mm256_min_ps(a, b) }
         }
 
-        // Ordered and signalling-free, as SSE's cmpleps: false where either is NaN.
         #[inline(always)]
-        fn le_mask(self, a: Self::V, b: Self::V) -> u32 {
-            unsafe { _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LE_OQ>(a, b)) as u32 }
+        fn join(self, lo: F32x4, hi: F32x4) -> Self::V {
+            unsafe { _mm256_set_m128(hi.m128(), lo.m128()) }
         }
     }
 }
@@ -161,18 +238,28 @@ mod tests {
     /// payloads ignored), and its comparison mask.
     fn results<L: Lanes8>(l: L, a: [f32; 8], b: [f32; 8]) -> (Vec<Option<u32>>, u32) {
         let (va, vb) = (l.load(&a), l.load(&b));
+        let half =
+            |x: &[f32; 8], k: usize| F32x4::from_array(std::array::from_fn(|i| x[4 * k + i]));
         let lanes = [
             l.sub(va, vb),
             l.mul(va, vb),
             l.max_or(va, vb),
             l.min_or(va, vb),
             l.splat(a[3]),
+            l.add(va, vb),
+            l.div(va, vb),
+            l.abs(va),
+            l.join(half(&b, 1), half(&a, 0)),
         ]
         .into_iter()
         .flat_map(|v| l.to_array(v))
         .map(|x| (!x.is_nan()).then_some(x.to_bits()))
         .collect();
-        (lanes, l.le_mask(va, vb))
+        let masks = l.le_mask(va, vb)
+            | l.lt_mask(va, vb) << 8
+            | l.eq_mask(va, vb) << 16
+            | l.nan_mask(va) << 24;
+        (lanes, masks)
     }
 
     /// The AVX engine computes every lane bit for bit as the two halves do, NaN, infinities

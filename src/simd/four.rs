@@ -19,6 +19,12 @@ mod lanes {
     pub struct F32x4(__m128);
 
     impl F32x4 {
+        /// The register, for the eight-lane engines that join two.
+        #[inline(always)]
+        pub fn m128(self) -> __m128 {
+            self.0
+        }
+
         #[inline(always)]
         pub fn splat(v: f32) -> Self {
             Self(unsafe { _mm_set1_ps(v) })
