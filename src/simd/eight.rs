@@ -30,7 +30,6 @@ pub struct Halves;
 impl Lanes for Halves {
     type V = [F32x4; 2];
     type Array = [f32; 8];
-    const WIDTH: usize = 8;
 
     #[inline(always)]
     fn splat(self, v: f32) -> Self::V {
@@ -143,7 +142,6 @@ mod avx {
     impl Lanes for Avx {
         type V = __m256;
         type Array = [f32; 8];
-        const WIDTH: usize = 8;
 
         #[inline(always)]
         fn splat(self, v: f32) -> Self::V {

@@ -10,8 +10,6 @@ pub trait Lanes: Copy {
     type V: Copy;
     /// The lanes as an array.
     type Array: Copy + std::ops::Index<usize, Output = f32>;
-    /// How many lanes.
-    const WIDTH: usize;
     fn splat(self, v: f32) -> Self::V;
     fn to_array(self, v: Self::V) -> Self::Array;
     fn add(self, a: Self::V, b: Self::V) -> Self::V;
@@ -39,7 +37,6 @@ pub struct Four;
 impl Lanes for Four {
     type V = F32x4;
     type Array = [f32; 4];
-    const WIDTH: usize = 4;
 
     #[inline(always)]
     fn splat(self, v: f32) -> F32x4 {
