@@ -154,8 +154,8 @@ impl Model {
     #[inline]
     fn surface(&self, local: impl FnOnce() -> RayQuery, hit: &ShapeHit) -> SurfacePoint {
         match (self, hit.detail) {
-            (Model::Mesh { mesh, .. }, HitDetail::Mesh { triangle, b }) => {
-                mesh.surface(triangle, b)
+            (Model::Mesh { mesh, groups, .. }, HitDetail::Mesh { triangle, group, b }) => {
+                mesh.surface_of(triangle, &groups[group as usize].corners_of(triangle), b)
             }
             (Model::Shape(shape), _) => shape.surface(&local(), hit),
             (_, detail) => unreachable!("hit {detail:?} does not belong to a mesh"),
@@ -165,7 +165,7 @@ impl Model {
     #[inline]
     fn uv(&self, local: impl FnOnce() -> RayQuery, hit: &ShapeHit) -> (f32, f32) {
         match (self, hit.detail) {
-            (Model::Mesh { mesh, .. }, HitDetail::Mesh { triangle, b }) => mesh.uv(triangle, b),
+            (Model::Mesh { mesh, .. }, HitDetail::Mesh { triangle, b, .. }) => mesh.uv(triangle, b),
             (Model::Shape(shape), _) => shape.uv(&shape.surface(&local(), hit), hit),
             (_, detail) => unreachable!("hit {detail:?} does not belong to a mesh"),
         }
@@ -174,7 +174,7 @@ impl Model {
     #[inline]
     fn uv_frame(&self, local: impl FnOnce() -> RayQuery, hit: &ShapeHit) -> UvFrame {
         match (self, hit.detail) {
-            (Model::Mesh { mesh, .. }, HitDetail::Mesh { triangle, b }) => {
+            (Model::Mesh { mesh, .. }, HitDetail::Mesh { triangle, b, .. }) => {
                 mesh.uv_frame(triangle, b)
             }
             (Model::Shape(shape), _) => shape.uv_frame(&shape.surface(&local(), hit), hit),
@@ -222,17 +222,29 @@ fn mesh_closest<L: Lanes8>(
         #[inline(always)]
         |leaf, mut t_max| {
             let mut nearest = None;
+            // The index of the pair's (or the lone group's) first group.
+            let mut index = leaf.start;
             for groups in in_pairs(&groups[leaf.start as usize..leaf.end as usize]) {
-                let found = match groups {
-                    LeafGroups::Pair(pair) => pair.closest(l, q, &pair_ray, t_min, t_max),
-                    LeafGroups::One(group) => group.closest(q, &ray, t_min, t_max),
+                let (found, group) = match groups {
+                    LeafGroups::Pair(pair) => {
+                        let found = pair.closest(l, q, &pair_ray, t_min, t_max);
+                        let second = found
+                            .is_some_and(|(triangle, _)| triangle >= pair.second.triangles().start);
+                        (found, index + second as u32)
+                    }
+                    LeafGroups::One(group) => (group.closest(q, &ray, t_min, t_max), index),
                 };
+                index += 2;
                 if let Some((triangle, hit)) = found {
                     t_max = hit.t;
                     nearest = Some(hit.t);
                     best = Some(ShapeHit {
                         t: hit.t,
-                        detail: HitDetail::Mesh { triangle, b: hit.b },
+                        detail: HitDetail::Mesh {
+                            triangle,
+                            group,
+                            b: hit.b,
+                        },
                     });
                 }
             }
@@ -427,8 +439,9 @@ impl Instance {
     #[inline]
     pub fn shadow_point(&self, hit: &ShapeHit) -> Option<(Vec3A, Vec3A)> {
         match (&*self.model, hit.detail) {
-            (Model::Mesh { mesh, .. }, HitDetail::Mesh { triangle, b }) => {
-                let (point, error) = mesh.shadow_point(triangle, b)?;
+            (Model::Mesh { mesh, groups, .. }, HitDetail::Mesh { triangle, group, b }) => {
+                let corners = groups[group as usize].corners_of(triangle);
+                let (point, error) = mesh.shadow_point_of(triangle, &corners, b)?;
                 if self.identity {
                     return Some((point, error));
                 }
@@ -539,6 +552,93 @@ mod tests {
             // A closed mesh is crossed twice by a ray through it, and occludes it.
             assert_eq!(model.crossings(&q, f32::INFINITY), 2);
             assert!(model.occludes(&q, f32::INFINITY));
+        }
+    }
+
+    /// A mesh hit names the group that holds its triangle, in either lane engine, and the
+    /// surface point made from that group's corners is bit for bit the one made from the
+    /// mesh's vertices, on a flat mesh and a smooth one (whose shadow point too).
+    #[test]
+    fn a_hits_group_holds_its_triangle_and_gives_its_surface() {
+        let flat = unit_cube_mesh().subdivided().subdivided().subdivided();
+        let normals: Vec<Vec3> = flat
+            .positions()
+            .iter()
+            .map(|&p| (Vec3::from(p) - Vec3::splat(0.5)).normalize())
+            .collect();
+        let smooth = Mesh::new(
+            flat.positions().iter().map(|&p| p.into()).collect(),
+            normals,
+            Vec::<Vec2>::new(),
+            flat.triangles().to_vec(),
+        )
+        .unwrap();
+        let bits = |v: Vec3A| v.to_array().map(f32::to_bits);
+        for mesh in [flat, smooth] {
+            let model = Model::mesh(&mesh);
+            let Model::Mesh {
+                mesh: stored,
+                bvh,
+                groups,
+            } = &model
+            else {
+                unreachable!()
+            };
+            let mut seed = 11u32;
+            let mut next = || {
+                seed = seed.wrapping_mul(1664525).wrapping_add(1013904223);
+                (seed >> 8) as f32 / (1 << 24) as f32
+            };
+            // The groups that come second in a pair of a leaf.
+            let mut second_of_pair = vec![false; groups.len()];
+            for node in &bvh.nodes {
+                for lane in 0..super::super::bvh::WIDTH {
+                    if let super::super::bvh::Child::Leaf(range) = node.child(lane) {
+                        for g in range.skip(1).step_by(2) {
+                            second_of_pair[g as usize] = true;
+                        }
+                    }
+                }
+            }
+            let mut seconds = 0;
+            for _ in 0..2000 {
+                let origin = Vec3::new(next() * 3.0 - 1.0, next() * 3.0 - 1.0, 3.0);
+                let target = Vec3::new(next(), next(), next());
+                let q = RayQuery::new(Ray::new(origin, target - origin));
+                let portable = mesh_closest(Halves, bvh, groups, &q, 0.0, f32::INFINITY);
+                #[cfg(target_arch = "x86_64")]
+                if let Some(avx) = crate::isa::avx2_lanes() {
+                    // SAFETY: an `Avx` exists only where the processor has AVX2.
+                    let wide =
+                        unsafe { mesh_closest_avx2(avx, bvh, groups, &q, 0.0, f32::INFINITY) };
+                    assert_eq!(wide, portable);
+                }
+                let hit = portable.expect("every ray aims into the cube");
+                let HitDetail::Mesh { triangle, group, b } = hit.detail else {
+                    unreachable!()
+                };
+                let holder = &groups[group as usize];
+                assert!(holder.triangles().contains(&triangle));
+                seconds += second_of_pair[group as usize] as u32;
+                let from_group = model.surface(|| q, &hit);
+                let from_vertices = stored.surface(triangle, b);
+                assert_eq!(bits(from_group.point), bits(from_vertices.point));
+                assert_eq!(bits(from_group.error), bits(from_vertices.error));
+                assert_eq!(bits(from_group.normal), bits(from_vertices.normal));
+                assert_eq!(bits(from_group.shading), bits(from_vertices.shading));
+                let instance = Instance::new(
+                    Arc::new(model.clone()),
+                    Transform::new(glam::Affine3A::IDENTITY).unwrap(),
+                );
+                assert_eq!(
+                    instance.shadow_point(&hit).map(|(p, e)| (bits(p), bits(e))),
+                    stored
+                        .shadow_point(triangle, b)
+                        .map(|(p, e)| (bits(p), bits(e)))
+                );
+            }
+            // Hits in a leaf's second group were among them.
+            assert!(seconds > 100, "{seconds}");
         }
     }
 

@@ -254,8 +254,15 @@ impl Mesh {
     /// interpolated.
     #[inline]
     pub fn surface(&self, i: u32, b: [f32; 3]) -> SurfacePoint {
-        let p = self.corners(i);
-        let (point, error) = barycentric_point(&p, b);
+        self.surface_of(i, &self.corners(i), b)
+    }
+
+    /// `surface`, for triangle `i` whose corners `p` the caller has at hand (bit for bit
+    /// `corners(i)`).
+    #[inline(always)]
+    pub fn surface_of(&self, i: u32, p: &[Vec3A; 3], b: [f32; 3]) -> SurfacePoint {
+        debug_assert_eq!(*p, self.corners(i));
+        let (point, error) = barycentric_point(p, b);
         let mut normal = (p[1] - p[0]).cross(p[2] - p[0]).normalize();
         let shading = if self.normals.is_empty() {
             normal
@@ -283,13 +290,20 @@ impl Mesh {
     /// the surface would. None on a flat mesh.
     #[inline]
     pub fn shadow_point(&self, i: u32, b: [f32; 3]) -> Option<(Vec3A, Vec3A)> {
+        self.shadow_point_of(i, &self.corners(i), b)
+    }
+
+    /// `shadow_point`, for triangle `i` whose corners `p` the caller has at hand (bit for
+    /// bit `corners(i)`).
+    #[inline]
+    pub fn shadow_point_of(&self, i: u32, p: &[Vec3A; 3], b: [f32; 3]) -> Option<(Vec3A, Vec3A)> {
         if self.normals.is_empty() {
             return None;
         }
-        let p = self.corners(i);
-        let (point, error) = barycentric_point(&p, b);
+        debug_assert_eq!(*p, self.corners(i));
+        let (point, error) = barycentric_point(p, b);
         let normals = self.triangles[i as usize].map(|v| self.normals[v as usize]);
-        Some(lifted_point(&p, &normals, b, point, error))
+        Some(lifted_point(p, &normals, b, point, error))
     }
 
     /// Texture coordinates at barycentric weights `b` of triangle `i`: the corners'

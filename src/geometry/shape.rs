@@ -82,6 +82,10 @@ pub enum HitDetail {
     Mesh {
         /// The triangle's index in the mesh.
         triangle: u32,
+        /// The group of four that holds it (`TriangleGroup`), whose copy of its corners the
+        /// test has just read: the surface point is made from there, not from the mesh's
+        /// vertices, which a large mesh keeps far from the cache.
+        group: u32,
         /// The weights of its three corners.
         b: [f32; 3],
     },

@@ -251,11 +251,19 @@ impl TriangleGroup {
     }
 
     /// Lane `i`'s corners.
+    #[inline(always)]
     fn lane_corners(&self, i: usize) -> [Vec3A; 3] {
         std::array::from_fn(|k| {
             let c = &self.corners[k];
-            Vec3A::new(c[0].to_array()[i], c[1].to_array()[i], c[2].to_array()[i])
+            Vec3A::new(c[0].lane(i), c[1].lane(i), c[2].lane(i))
         })
+    }
+
+    /// The corners of `triangle`, one of those it holds: the mesh's vertices, bit for bit.
+    #[inline(always)]
+    pub fn corners_of(&self, triangle: u32) -> [Vec3A; 3] {
+        debug_assert!(self.triangles().contains(&triangle));
+        self.lane_corners((triangle.wrapping_sub(self.first) as usize) & (GROUP_WIDTH - 1))
     }
 
     /// The lanes in use, as a mask.

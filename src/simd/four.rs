@@ -44,6 +44,14 @@ mod lanes {
             out
         }
 
+        /// Lane `i & 3`, read where the lanes lie in memory (not through a register).
+        #[inline(always)]
+        pub fn lane(&self, i: usize) -> f32 {
+            // SAFETY: an __m128 is four f32 lanes, lane 0 first in memory (`from_array`), and
+            // `i & 3` is one of them.
+            unsafe { *(self as *const Self).cast::<f32>().add(i & 3) }
+        }
+
         /// Per lane `if self > other { self } else { other }`.
         #[inline(always)]
         pub fn max_or(self, other: Self) -> Self {
@@ -148,6 +156,11 @@ mod portable {
         #[inline(always)]
         pub fn to_array(self) -> [f32; 4] {
             self.0
+        }
+
+        #[inline(always)]
+        pub fn lane(&self, i: usize) -> f32 {
+            self.0[i & 3]
         }
 
         #[inline(always)]
