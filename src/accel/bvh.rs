@@ -7,6 +7,7 @@
 pub use super::bvh_bins::LeafCost;
 pub use super::bvh_build::Coincident;
 use super::bvh_build::{BinaryBvh, MAX_DEPTH};
+use super::collapse_plan::CollapsePlan;
 pub use super::wide_node::{Child, WIDTH, WideNode};
 use super::wide_node::{LANE, WideRay};
 use crate::geometry::{Aabb, RayQuery};
@@ -132,7 +133,8 @@ impl Bvh {
             coincident,
         };
         if !binary.nodes.is_empty() {
-            bvh.collapse(binary, 0);
+            let plan = CollapsePlan::new(binary);
+            bvh.collapse(binary, &plan, 0);
         }
         bvh
     }
@@ -163,41 +165,24 @@ impl Bvh {
         }
     }
 
-    /// Makes binary node `node` into a wide node (appended), whose lanes are the up to eight
-    /// descendants found by repeatedly opening the inner child of largest surface area.
-    fn collapse(&mut self, binary: &BinaryBvh, node: usize) -> u32 {
-        let nodes = &binary.nodes;
+    /// Makes binary node `node` into a wide node (appended), whose lanes are the descendants
+    /// that `plan` chose for it.
+    fn collapse(&mut self, binary: &BinaryBvh, plan: &CollapsePlan, node: usize) -> u32 {
         let index = self.nodes.len();
         self.nodes.push(WideNode::EMPTY);
-        let mut lanes = [0usize; WIDTH];
-        let mut used = if nodes[node].count > 0 {
-            lanes[0] = node; // a root that is a leaf
-            1
+        let mut lanes = Vec::with_capacity(WIDTH);
+        if binary.nodes[node].count > 0 {
+            lanes.push(node); // a root that is a leaf
         } else {
-            lanes[0] = nodes[node].first as usize;
-            lanes[1] = lanes[0] + 1;
-            2
-        };
-        while used < WIDTH {
-            let open = (0..used)
-                .filter(|&l| nodes[lanes[l]].count == 0)
-                .max_by(|&a, &b| {
-                    let area = |l: usize| nodes[lanes[l]].bounds.half_area();
-                    area(a).total_cmp(&area(b))
-                });
-            let Some(l) = open else { break };
-            let first = nodes[lanes[l]].first as usize;
-            lanes[l] = first;
-            lanes[used] = first + 1;
-            used += 1;
+            plan.lanes_of_node(binary, node, &mut lanes);
         }
         let mut wide = WideNode::EMPTY;
-        for (lane, &b) in lanes[..used].iter().enumerate() {
-            let n = nodes[b];
+        for (lane, &b) in lanes.iter().enumerate() {
+            let n = binary.nodes[b];
             let child = if n.count > 0 {
                 Child::Leaf(n.first..n.first + n.count)
             } else {
-                Child::Node(self.collapse(binary, b))
+                Child::Node(self.collapse(binary, plan, b))
             };
             wide.set(lane, n.bounds, child);
         }

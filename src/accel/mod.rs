@@ -18,6 +18,7 @@
 mod bvh;
 mod bvh_bins;
 mod bvh_build;
+mod collapse_plan;
 mod csg;
 mod csg_members;
 mod first_hit;
