@@ -3,7 +3,7 @@
 
 use super::{Integrator, Shading};
 use crate::accel::{Hit, Toward};
-use crate::appearance::{Falloff, LightKind, Material, reflect};
+use crate::appearance::{Falloff, LightKind, Material, Texture, reflect};
 use crate::geometry::{RayQuery, SurfacePoint};
 use glam::Vec3A;
 
@@ -64,8 +64,25 @@ impl Integrator<'_> {
 
     /// The colour of `material`'s texture at `surface`, the point of `hit` (on object
     /// `object`) along `q`.
-    #[inline]
+    #[inline(always)]
     pub(super) fn texture_color(
+        &self,
+        q: &RayQuery,
+        hit: &Hit,
+        object: u32,
+        material: &Material,
+        surface: &SurfacePoint,
+    ) -> Vec3A {
+        // One colour needs neither the texture coordinates nor the object's own point.
+        match material.texture {
+            Texture::Solid(color) => color.into(),
+            _ => self.varying_texture_color(q, hit, object, material, surface),
+        }
+    }
+
+    /// `texture_color` for a texture that varies over the surface.
+    #[inline(never)]
+    fn varying_texture_color(
         &self,
         q: &RayQuery,
         hit: &Hit,
