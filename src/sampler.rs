@@ -148,7 +148,9 @@ impl SampleStream {
     }
 
     /// The next dimension's point, in [0, 1)².
-    #[inline]
+    // Not inlined: inlined into a loop that draws only for some lights (the Whitted light
+    // loop), the compiler hoisted its per-subsample part out and ran it for every hit.
+    #[inline(never)]
     pub fn next_2d(&mut self) -> (f32, f32) {
         let seed = hash(self.pixel ^ hash(self.dimension.wrapping_add(0x2545_f491)));
         self.dimension += 1;
