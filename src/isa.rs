@@ -80,21 +80,27 @@ static ACTIVE: AtomicU8 = AtomicU8::new(0);
 /// The instruction set in use: the one chosen, else the one `PRISM_ISA` names, else the
 /// best this processor runs. (The `prism` command refuses a `PRISM_ISA` it cannot follow
 /// before it starts; a library user that never chooses gets the best set instead.)
-#[inline]
+#[inline(always)]
 pub fn active() -> InstructionSet {
+    // Asked before every mesh traversal: the common case in line, the first choice apart.
     match ACTIVE.load(Ordering::Relaxed) {
         1 => InstructionSet::Baseline,
         2 => InstructionSet::Avx2,
-        _ => {
-            let set = from_environment()
-                .ok()
-                .flatten()
-                .filter(|set| set.is_supported())
-                .unwrap_or_else(InstructionSet::best);
-            ACTIVE.store(set.code(), Ordering::Relaxed);
-            set
-        }
+        _ => choose_first(),
     }
+}
+
+/// The set `active` uses when none has been chosen yet.
+#[cold]
+#[inline(never)]
+fn choose_first() -> InstructionSet {
+    let set = from_environment()
+        .ok()
+        .flatten()
+        .filter(|set| set.is_supported())
+        .unwrap_or_else(InstructionSet::best);
+    ACTIVE.store(set.code(), Ordering::Relaxed);
+    set
 }
 
 /// The set `PRISM_ISA` names, if it is set.
