@@ -171,6 +171,13 @@ impl FirstHitTiles {
         Some(&self.candidates[self.start[tile] as usize..self.start[tile + 1] as usize])
     }
 
+    /// `at(x, y)`, and the first column past `x` that lies in another tile: every pixel of
+    /// row `y` before it has the same candidates.
+    #[inline]
+    pub fn at_run(&self, x: u32, y: u32) -> (Option<&[Candidate]>, u32) {
+        (self.at(x, y), (x / TILE + 1) * TILE)
+    }
+
     /// How many tiles there are, how many are empty and left to the BVH, and how many
     /// candidates the listed tiles hold in all.
     pub fn census(&self) -> TileCensus {
@@ -452,6 +459,40 @@ mod tests {
         assert_matches_bvh(&scene, camera, 200, 150);
         // Sizes that are not multiples of the tile side leave partial tiles at the edges.
         assert_matches_bvh(&scene, camera, 203, 77);
+    }
+
+    /// A run's candidates are those of every pixel in it, the run ends at a tile's edge,
+    /// and the runs from each pixel of a row cover it whole: what a pass looks up once
+    /// per run is what it would look up per pixel.
+    #[test]
+    fn a_run_has_the_candidates_of_every_pixel_in_it() {
+        let (scene, camera) = seed();
+        for (width, height) in [(200, 150), (203, 77)] {
+            let tiles = FirstHitTiles::new(
+                scene.primitives(),
+                &camera.rays(width, height),
+                width,
+                height,
+            );
+            let same = |a: Option<&[Candidate]>, b: Option<&[Candidate]>| match (a, b) {
+                (Some(a), Some(b)) => std::ptr::eq(a, b),
+                (None, None) => true,
+                _ => false,
+            };
+            for y in 0..height {
+                let mut x = 0;
+                while x < width {
+                    let (run, end) = tiles.at_run(x, y);
+                    assert!(end > x && end % TILE == 0, "({x}, {y}): {end}");
+                    for inside in x..end.min(width) {
+                        assert!(same(run, tiles.at(inside, y)), "({inside}, {y})");
+                        // A run may be entered anywhere in it.
+                        assert_eq!(tiles.at_run(inside, y).1, end);
+                    }
+                    x = end;
+                }
+            }
+        }
     }
 
     #[test]

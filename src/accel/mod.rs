@@ -558,6 +558,20 @@ impl CameraView {
         }
     }
 
+    /// `reach(x, y)`, and the first column past `x` whose reach may differ: the same reach
+    /// serves every pixel of row `y` from `x` up to it (the rest of `x`'s tile), so a
+    /// pass looks it up once per run of pixels.
+    #[inline]
+    pub fn reach_run(&self, x: u32, y: u32) -> (Reach<'_>, u32) {
+        match &self.tiles {
+            Some(tiles) => match tiles.at_run(x, y) {
+                (Some(candidates), end) => (Reach::Among(candidates), end),
+                (None, end) => (Reach::After(0.0), end),
+            },
+            None => (Reach::After(0.0), u32::MAX),
+        }
+    }
+
     /// The first-hit tiles, when the option built them.
     pub fn tiles(&self) -> Option<&FirstHitTiles> {
         self.tiles.as_ref()

@@ -67,6 +67,9 @@ pub fn render_pass(
                 let row_active = active.map(|a| &a[local_y * width..(local_y + 1) * width]);
                 let y = window.y0 + local_y as u32;
                 let subsamples = sampler.row(y, pass);
+                // What the row's primary rays can hit first, looked up once per run of
+                // pixels that share it (`run_end` is the first column past the run).
+                let (mut reach, mut run_end) = (Reach::After(0.0), 0);
                 for (local_x, sum) in row_pixels.iter_mut().enumerate() {
                     if row_active.is_some_and(|a| !a[local_x]) {
                         continue;
@@ -85,7 +88,10 @@ pub fn render_pass(
                             let (dx, dy) = subsamples.offset(x);
                             rays.ray(x as f32 + dx, y as f32 + dy)
                         };
-                        integrator.trace_primary(view.reach(x, y), ray, stream)
+                        if x >= run_end {
+                            (reach, run_end) = view.reach_run(x, y);
+                        }
+                        integrator.trace_primary(reach, ray, stream)
                     };
                     let color = if settings.high_dynamic_range {
                         sample.color
