@@ -22,13 +22,13 @@ enum Placement {
 }
 
 /// For every binary node and lane budget, the least cost and the placement that gives it.
+/// An inner node's placement in a full budget of eight lanes is always `Opened`: it is how
+/// the node, made a wide node of its own, shares its lanes between its children.
 pub(super) struct CollapsePlan {
     /// `cost[n][k - 1]`: the least total area of the wide nodes that subtree `n` needs
     /// when it may take up to k lanes of its parent's node.
     cost: Vec<[f64; WIDTH]>,
     placement: Vec<[Placement; WIDTH]>,
-    /// For an inner node made a wide node, its first child's share of the eight lanes.
-    own_split: Vec<u8>,
 }
 
 impl CollapsePlan {
@@ -38,7 +38,6 @@ impl CollapsePlan {
         let mut plan = CollapsePlan {
             cost: vec![[0.0; WIDTH]; n],
             placement: vec![[Placement::Whole; WIDTH]; n],
-            own_split: vec![0; n],
         };
         // Children before parents: the nodes reachable from the root, in reverse of a
         // walk that meets every node before its children.
@@ -62,10 +61,7 @@ impl CollapsePlan {
     fn settle(&mut self, binary: &BinaryBvh, node: usize) {
         let b = &binary.nodes[node];
         if b.count > 0 {
-            // A leaf takes one lane and needs no node.
-            self.cost[node] = [0.0; WIDTH];
-            self.placement[node] = [Placement::Whole; WIDTH];
-            return;
+            return; // a leaf takes one lane and needs no node: cost 0, `Whole`, as made
         }
         let (first, second) = (b.first as usize, b.first as usize + 1);
         // Opened into up to `budget` lanes: the least split, and its cost (ties to the
@@ -84,7 +80,7 @@ impl CollapsePlan {
         let own = f64::from(b.bounds.half_area()) + inside;
         let mut cost = [own; WIDTH];
         let mut placement = [Placement::Whole; WIDTH];
-        for budget in 2..=WIDTH {
+        for budget in 2..WIDTH {
             let (c, share) = opened(budget);
             // Opening saves this node's own box test; on a tie, fewer nodes.
             if c <= own {
@@ -92,18 +88,19 @@ impl CollapsePlan {
                 placement[budget - 1] = Placement::Opened(share);
             }
         }
+        // Eight lanes hold the node's own lanes as well as any subtree it could open into:
+        // opened, whatever its area.
+        cost[WIDTH - 1] = inside;
+        placement[WIDTH - 1] = Placement::Opened(split);
         self.cost[node] = cost;
         self.placement[node] = placement;
-        self.own_split[node] = split;
     }
 
     /// The lanes of inner node `node` made a wide node, in order: its first child's
     /// descendants, then its second's.
     pub fn lanes_of_node(&self, binary: &BinaryBvh, node: usize, lanes: &mut Vec<usize>) {
-        let first = binary.nodes[node].first as usize;
-        let share = usize::from(self.own_split[node]);
-        self.lanes_within(binary, first, share, lanes);
-        self.lanes_within(binary, first + 1, WIDTH - share, lanes);
+        debug_assert_eq!(binary.nodes[node].count, 0, "a leaf is no wide node");
+        self.lanes_within(binary, node, WIDTH, lanes);
     }
 
     /// The lanes that subtree `node` takes within `budget` lanes of its parent's node.
