@@ -33,7 +33,7 @@ pub use bvh::{Bvh, Coincident};
 pub use csg::{Csg, CsgLeaf, CsgNode, CsgOperation};
 pub use first_hit::{Candidate, FirstHitTiles, TileCensus};
 pub use instance::{Instance, Model};
-pub use light_buffer::{LightBuffer, LightBufferCensus};
+pub use light_buffer::{LightBuffer, LightBufferCensus, Occluder};
 pub use primitive::{CSG_MEMBERS_MATERIAL, Primitive, Surface};
 
 /// The most candidates a first-hit tile lists before it is left to the BVH.
@@ -449,18 +449,27 @@ impl Accelerator {
                 "light {light} moved"
             );
             let distance_sq = to_light.length_squared();
-            let mut q = None;
             let mut light = Vec3A::ONE;
-            for o in listed {
-                if o.min_distance_sq >= distance_sq {
-                    break; // this box and every later one start beyond the origin
+            // The list is nearest box first: a box that starts beyond the origin ends it.
+            let due = |o: &Occluder| o.min_distance_sq < distance_sq;
+            // The ray is built only once something is due for a test, and outside the loop
+            // over the list: inside it, the compiler would build it ahead of every shadow ray.
+            let Some(first) = listed
+                .iter()
+                .position(|o| !due(o) || Some(o.object) != leaving)
+                .filter(|&i| due(&listed[i]))
+            else {
+                return light;
+            };
+            let q = shadow(to_light);
+            for o in &listed[first..] {
+                if !due(o) {
+                    break;
                 }
                 if Some(o.object) == leaving {
                     continue;
                 }
-                // Built only for a ray that has something to test.
-                let q = q.get_or_insert_with(|| shadow(to_light));
-                if !self.pass_through(o.primitive, q, 1.0, opaque, filters, &mut light) {
+                if !self.pass_through(o.primitive, &q, 1.0, opaque, filters, &mut light) {
                     break;
                 }
             }
