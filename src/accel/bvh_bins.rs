@@ -8,10 +8,10 @@ use glam::Vec3A;
 /// Bins per axis.
 pub(super) const BINS: usize = 12;
 /// Cost of a box test relative to a primitive test, for the SAH.
-const TRAVERSAL_COST: f32 = 1.0;
+pub(super) const TRAVERSAL_COST: f32 = 1.0;
 
 /// How a leaf's primitives are tested, for the SAH: `group` at a time, each group counted
-/// as one test (a mesh's four triangles in SIMD lanes), and at most `max` in one leaf.
+/// as one test (a mesh's eight triangles in SIMD lanes), and at most `max` in one leaf.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct LeafCost {
     pub group: usize,
@@ -30,7 +30,7 @@ impl LeafCost {
         // known only at run time takes tens of cycles.
         match self.group {
             1 => n as f32,
-            4 => n.div_ceil(4) as f32,
+            8 => n.div_ceil(8) as f32,
             group => n.div_ceil(group) as f32,
         }
     }

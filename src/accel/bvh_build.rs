@@ -7,7 +7,9 @@
 //! threads without sharing anything, and the tree is laid out after, so it is the same
 //! whichever thread builds what.
 
-use super::bvh_bins::{BINS, BinSets, Bounds, BuildItem, LeafCost, below_split, best_split};
+use super::bvh_bins::{
+    BINS, BinSets, Bounds, BuildItem, LeafCost, TRAVERSAL_COST, below_split, best_split,
+};
 use crate::geometry::Aabb;
 use glam::Vec3A;
 
@@ -349,6 +351,10 @@ fn split(
     let n = items.len();
     // A leaf at the depth limit, however large, keeps traversal within its fixed stack.
     if depth >= MAX_DEPTH || n <= 1 {
+        return None;
+    }
+    // Every split costs at least a box test: a leaf that costs no more is kept unlooked-at.
+    if n <= leaf_cost.max && leaf_cost.of(n) <= TRAVERSAL_COST {
         return None;
     }
     let (bounds, centroid_bounds) = (around.boxes.aabb(), around.centroids.aabb());
