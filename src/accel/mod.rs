@@ -457,10 +457,12 @@ impl Accelerator {
             let Some(first) = listed
                 .iter()
                 .position(|o| !due(o) || Some(o.object) != leaving)
-                .filter(|&i| due(&listed[i]))
             else {
-                return light;
+                return light; // only the object the ray leaves
             };
+            if !due(&listed[first]) {
+                return light; // nothing nearer than the origin
+            }
             let q = shadow(to_light);
             for o in &listed[first..] {
                 if !due(o) {
