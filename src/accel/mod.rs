@@ -563,10 +563,7 @@ impl CameraView {
     /// What the primary rays through pixel (x, y) can hit first.
     #[inline]
     pub fn reach(&self, x: u32, y: u32) -> Reach<'_> {
-        match self.tiles.as_ref().and_then(|t| t.at(x, y)) {
-            Some(candidates) => Reach::Among(candidates),
-            None => Reach::After(0.0),
-        }
+        self.reach_run(x, y).0
     }
 
     /// `reach(x, y)`, and the first column past `x` whose reach may differ: the same reach
