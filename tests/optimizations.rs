@@ -155,6 +155,36 @@ fn first_hit_tiles_draw_meshes_as_the_bvh_draws_them() {
 }
 
 #[test]
+fn meshes_listed_by_group_draw_what_their_hierarchies_draw() {
+    // Close to the clay bunny, the first-hit tiles list its groups of triangles
+    // (mesh_listing.rs), and primary rays test those instead of walking its hierarchy: the
+    // image must be what the walk draws, and what the BVH alone draws. The glass bunny
+    // beside it sends refracted rays back through it.
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/bunny.toml");
+    let mut scene = prism::scene_file::load_scene(&path).unwrap();
+    scene.camera = prism::camera::Camera::looking_along(
+        glam::Vec3::new(-4.0, -2.0, -40.0),
+        glam::Vec3::new(-0.1, -0.25, -1.0),
+        50.0,
+    )
+    .unwrap();
+    let listed = prepared(&scene, |_| {});
+    let walked = prepared(&scene, |o| o.mesh_groups = false);
+    let traversal = prepared(&scene, |o| o.first_hit_tiles = false);
+    let s = RenderSettings::new(640, 480, 2);
+    let rays = scene.camera.rays(s.width, s.height);
+    let census = |p: &PreparedScene| {
+        let view = p.geometry.accel().camera_view(&rays, s.width, s.height);
+        view.tiles().unwrap().census()
+    };
+    assert!(census(&listed).listing > 500, "{:?}", census(&listed));
+    assert_eq!(census(&walked).listing, 0);
+    let reference = image(listed, scene.camera, s);
+    assert_eq!(reference, image(walked, scene.camera, s));
+    assert_eq!(reference, image(traversal, scene.camera, s));
+}
+
+#[test]
 fn light_buffers_draw_the_image_the_bvh_draws() {
     // Shadow rays that look up what they may meet by their direction from the light
     // (light_buffer.rs) must see what a traversal of the BVH sees: for the seed's light;
@@ -299,6 +329,7 @@ fn soft_shadows_draw_the_same_image_with_every_shortcut_off() {
         ),
         ("the light buffers", |o| o.light_buffers = false),
         ("the first-hit tiles", |o| o.first_hit_tiles = false),
+        ("the meshes' listed groups", |o| o.mesh_groups = false),
         ("the BVH", |o| o.bvh = false),
     ] {
         let without = image(prepared(&scene, off), scene.camera, s);

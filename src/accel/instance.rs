@@ -5,13 +5,14 @@
 
 use super::bvh::{Bvh, LeafCost};
 use super::bvh_build::BinaryBvh;
-use crate::geometry::{
-    Aabb, GROUP_WIDTH, GroupPair, GroupRay, HitDetail, LaneRay, Mesh, Ray, RayQuery, Shape,
-    ShapeHit, SurfacePoint, Transform, TriangleGroup, UvFrame,
-};
+use super::mesh_search::{ListedGroup, listed_closest, mesh_closest, mesh_occludes};
 #[cfg(target_arch = "x86_64")]
-use crate::simd::Avx;
-use crate::simd::{Halves, Lanes8};
+use super::mesh_search::{listed_closest_avx2, mesh_closest_avx2, mesh_occludes_avx2};
+use crate::geometry::{
+    Aabb, GROUP_WIDTH, GroupRay, HitDetail, Mesh, Ray, RayQuery, Shape, ShapeHit, SurfacePoint,
+    Transform, TriangleGroup, UvFrame,
+};
+use crate::simd::Halves;
 use glam::Vec3A;
 use std::sync::Arc;
 
@@ -121,6 +122,35 @@ impl Model {
         }
     }
 
+    /// The nearest hit with t in (0, t_max) among the groups `listed` (a first-hit tile's,
+    /// nearest box first): what `intersect_after` from 0 finds. None for a shape, which
+    /// lists none.
+    #[inline(never)]
+    fn nearest_listed(&self, q: &RayQuery, listed: &[ListedGroup], t_max: f32) -> Option<ShapeHit> {
+        let Model::Mesh { groups, .. } = self else {
+            return None;
+        };
+        #[cfg(target_arch = "x86_64")]
+        let found = match crate::isa::avx2_lanes() {
+            // SAFETY: an `Avx` exists only where the processor has AVX2.
+            Some(avx) => unsafe { listed_closest_avx2(avx, groups, listed, q, t_max) },
+            None => listed_closest(Halves, groups, listed, q, t_max),
+        };
+        #[cfg(not(target_arch = "x86_64"))]
+        let found = listed_closest(Halves, groups, listed, q, t_max);
+        // Two triangles can both be hit at one distance only where the ray meets the edge
+        // (or corner) they share, exactly: a barycentric weight of 0 on each. Which of them
+        // a search returns then depends on the order it tests them in, so the hierarchy's
+        // walk, the reference, answers such a ray.
+        match found {
+            Some(ShapeHit {
+                detail: HitDetail::Mesh { b, .. },
+                ..
+            }) if b.contains(&0.0) => self.intersect_after(q, 0.0, t_max),
+            found => found,
+        }
+    }
+
     #[inline(never)]
     fn occludes(&self, q: &RayQuery, t_max: f32) -> bool {
         match self {
@@ -184,136 +214,6 @@ impl Model {
             (_, detail) => unreachable!("hit {detail:?} does not belong to a mesh"),
         }
     }
-}
-
-/// A leaf's groups, two at a time while two are left (a leaf holds one or two groups, more
-/// only where many triangles share one centre).
-enum LeafGroups<'g> {
-    Pair(GroupPair<'g>),
-    One(&'g TriangleGroup),
-}
-
-/// The groups of a leaf (`leaf`), in order, two at a time.
-#[inline(always)]
-fn in_pairs(leaf: &[TriangleGroup]) -> impl Iterator<Item = LeafGroups<'_>> {
-    leaf.chunks(2).map(|groups| match groups {
-        [first, second] => LeafGroups::Pair(GroupPair { first, second }),
-        [one] => LeafGroups::One(one),
-        _ => unreachable!("chunks of one or two"),
-    })
-}
-
-/// The nearest hit along `q` with t in (t_min, t_max) on the mesh of `bvh` and `groups`,
-/// walked in the lanes of `l`: a leaf's groups are tested two at a time (`GroupPair`), each
-/// pair finding what its groups find one after the other.
-#[inline(always)]
-fn mesh_closest<L: Lanes8>(
-    l: L,
-    bvh: &Bvh,
-    groups: &[TriangleGroup],
-    q: &RayQuery,
-    t_min: f32,
-    t_max: f32,
-) -> Option<ShapeHit> {
-    let ray = GroupRay::new(q);
-    let pair_ray = LaneRay::in_lanes(l, q);
-    let mut best = None;
-    bvh.closest_with(
-        l,
-        q,
-        t_max,
-        #[inline(always)]
-        |leaf, mut t_max| {
-            let mut nearest = None;
-            // The index of the pair's (or the lone group's) first group.
-            let mut index = leaf.start;
-            for groups in in_pairs(&groups[leaf.start as usize..leaf.end as usize]) {
-                let (found, group) = match groups {
-                    LeafGroups::Pair(pair) => {
-                        let found = pair.closest(l, q, &pair_ray, t_min, t_max);
-                        let second = found
-                            .is_some_and(|(triangle, _)| triangle >= pair.second.triangles().start);
-                        (found, index + second as u32)
-                    }
-                    LeafGroups::One(group) => (group.closest(q, &ray, t_min, t_max), index),
-                };
-                index += 2;
-                if let Some((triangle, hit)) = found {
-                    t_max = hit.t;
-                    nearest = Some(hit.t);
-                    best = Some(ShapeHit {
-                        t: hit.t,
-                        detail: HitDetail::Mesh {
-                            triangle,
-                            group,
-                            b: hit.b,
-                        },
-                    });
-                }
-            }
-            nearest
-        },
-    );
-    best
-}
-
-/// `mesh_closest` compiled for AVX2.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-fn mesh_closest_avx2(
-    avx: Avx,
-    bvh: &Bvh,
-    groups: &[TriangleGroup],
-    q: &RayQuery,
-    t_min: f32,
-    t_max: f32,
-) -> Option<ShapeHit> {
-    mesh_closest(avx, bvh, groups, q, t_min, t_max)
-}
-
-/// Whether anything of the mesh of `bvh` and `groups` lies on the segment (0, t_max) of
-/// `q`, walked as `mesh_closest` walks it.
-#[inline(always)]
-fn mesh_occludes<L: Lanes8>(
-    l: L,
-    bvh: &Bvh,
-    groups: &[TriangleGroup],
-    q: &RayQuery,
-    t_max: f32,
-) -> bool {
-    let ray = GroupRay::new(q);
-    let pair_ray = LaneRay::in_lanes(l, q);
-    let mut hit = false;
-    bvh.visit_with(
-        l,
-        q,
-        t_max,
-        #[inline(always)]
-        |leaf| {
-            hit =
-                in_pairs(&groups[leaf.start as usize..leaf.end as usize]).any(
-                    |groups| match groups {
-                        LeafGroups::Pair(pair) => pair.any(l, q, &pair_ray, 0.0, t_max),
-                        LeafGroups::One(group) => group.any(q, &ray, 0.0, t_max),
-                    },
-                );
-            !hit
-        },
-    );
-    hit
-}
-
-/// `mesh_occludes` compiled for AVX2.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-fn mesh_occludes_avx2(
-    avx: Avx,
-    bvh: &Bvh,
-    groups: &[TriangleGroup],
-    q: &RayQuery,
-    t_max: f32,
-) -> bool {
-    mesh_occludes(avx, bvh, groups, q, t_max)
 }
 
 /// A model placed in the scene by a transform.
@@ -385,6 +285,20 @@ impl Instance {
             return self.model.intersect_after(q, t_min, t_max);
         }
         self.model.intersect_after(&self.local(q), t_min, t_max)
+    }
+
+    /// The nearest hit with t in (0, t_max) among its model's groups `listed`.
+    #[inline]
+    pub fn nearest_listed(
+        &self,
+        q: &RayQuery,
+        listed: &[ListedGroup],
+        t_max: f32,
+    ) -> Option<ShapeHit> {
+        if self.identity {
+            return self.model.nearest_listed(q, listed, t_max);
+        }
+        self.model.nearest_listed(&self.local(q), listed, t_max)
     }
 
     /// Whether anything of it lies on the segment (0, t_max).

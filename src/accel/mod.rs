@@ -25,8 +25,11 @@ mod first_hit;
 mod instance;
 mod isolated;
 mod light_buffer;
+mod mesh_listing;
+mod mesh_search;
 mod outline;
 mod primitive;
+mod tile_projection;
 mod wide_node;
 
 pub use bvh::{Bvh, Coincident};
@@ -34,6 +37,7 @@ pub use csg::{Csg, CsgLeaf, CsgNode, CsgOperation};
 pub use first_hit::{Candidate, FirstHitTiles, TileCensus};
 pub use instance::{Instance, Model};
 pub use light_buffer::{LightBuffer, LightBufferCensus, Occluder};
+pub use mesh_search::ListedGroup;
 pub use primitive::{CSG_MEMBERS_MATERIAL, Primitive, Surface};
 
 /// The most candidates a first-hit tile lists before it is left to the BVH.
@@ -56,6 +60,9 @@ pub struct AccelOptions {
     pub bvh: bool,
     /// Primary rays look up what they can hit first by tile (first_hit.rs).
     pub first_hit_tiles: bool,
+    /// The first-hit tiles list a placed mesh's groups of triangles, so that a primary ray
+    /// tests those rather than walking the mesh's hierarchy (mesh_listing.rs).
+    pub mesh_groups: bool,
     /// Shadow rays look up what they may meet by their direction from the light
     /// (light_buffer.rs).
     pub light_buffers: bool,
@@ -77,6 +84,7 @@ impl AccelOptions {
     pub const ALL: AccelOptions = AccelOptions {
         bvh: true,
         first_hit_tiles: true,
+        mesh_groups: true,
         light_buffers: true,
         isolated_solids: true,
         any_hit_shadows: true,
@@ -117,8 +125,9 @@ pub enum Reach<'a> {
         t_min: f32,
     },
     /// A primary ray that can only hit these first, nearest box first (a first-hit tile);
-    /// an empty list means it hits nothing.
-    Among(&'a [Candidate]),
+    /// an empty list means it hits nothing. The groups the candidates list are in the
+    /// second slice ([`Candidate::listed`]).
+    Among(&'a [Candidate], &'a [ListedGroup]),
 }
 
 /// The primitives of a scene and every structure built to find what rays meet among them.
@@ -287,10 +296,15 @@ impl Accelerator {
     /// hit first, by pixel.
     pub fn camera_view(&self, rays: &CameraRays, width: u32, height: u32) -> CameraView {
         CameraView {
-            tiles: self
-                .options
-                .first_hit_tiles
-                .then(|| FirstHitTiles::new(&self.primitives, rays, width, height)),
+            tiles: self.options.first_hit_tiles.then(|| {
+                FirstHitTiles::new(
+                    &self.primitives,
+                    rays,
+                    width,
+                    height,
+                    self.options.mesh_groups,
+                )
+            }),
         }
     }
 
@@ -311,7 +325,7 @@ impl Accelerator {
                     None => self.nearest_after(q, t_min),
                 }
             }
-            Reach::Among(candidates) => self.nearest_among(q, candidates),
+            Reach::Among(candidates, listed) => self.nearest_among(q, candidates, listed),
         }
     }
 
@@ -375,7 +389,12 @@ impl Accelerator {
     /// sorted by a lower bound of the distance at which it can hit them: the same answer
     /// as a traversal from 0.
     #[inline]
-    fn nearest_among(&self, q: &RayQuery, candidates: &[Candidate]) -> Option<Hit> {
+    fn nearest_among(
+        &self,
+        q: &RayQuery,
+        candidates: &[Candidate],
+        listed: &[ListedGroup],
+    ) -> Option<Hit> {
         let mut best: Option<Hit> = None;
         let mut t_max = f32::INFINITY;
         for c in candidates {
@@ -383,7 +402,13 @@ impl Accelerator {
                 break; // this box and every later one start beyond the nearest hit
             }
             let shape = &self.primitives[c.primitive as usize].surface;
-            if let Some(hit) = shape.intersect_after(q, 0.0, t_max) {
+            let found = match (shape, c.listed(listed)) {
+                (Surface::Instance(instance), Some(groups)) => {
+                    instance.nearest_listed(q, groups, t_max)
+                }
+                _ => shape.intersect_after(q, 0.0, t_max),
+            };
+            if let Some(hit) = found {
                 t_max = hit.t;
                 best = Some(Hit {
                     shape: hit,
@@ -573,7 +598,7 @@ impl CameraView {
     pub fn reach_run(&self, x: u32, y: u32) -> (Reach<'_>, u32) {
         match &self.tiles {
             Some(tiles) => match tiles.at_run(x, y) {
-                (Some(candidates), end) => (Reach::Among(candidates), end),
+                (Some(candidates), end) => (Reach::Among(candidates, tiles.listed()), end),
                 (None, end) => (Reach::After(0.0), end),
             },
             None => (Reach::After(0.0), u32::MAX),

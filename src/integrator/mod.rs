@@ -237,7 +237,7 @@ impl<'a> Integrator<'a> {
         self.stream = stream;
         self.media = Media::AIR;
         let color = match (reach, self.solid_background) {
-            (Reach::Among([]), Some(background)) => {
+            (Reach::Among([], _), Some(background)) => {
                 self.signature.miss();
                 background
             }

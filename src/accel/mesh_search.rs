@@ -1,0 +1,211 @@
+//! A mesh's triangles searched for a ray: by walking its hierarchy (the nearest hit, or
+//! any hit on a segment), or, for a primary ray, among the groups a first-hit tile lists
+//! (mesh_listing.rs). A leaf's groups are tested two at a time in eight lanes
+//! (`GroupPair`), compiled for AVX2 where the processor has it.
+
+use super::bvh::Bvh;
+use crate::geometry::{GroupPair, GroupRay, HitDetail, LaneRay, RayQuery, ShapeHit, TriangleGroup};
+#[cfg(target_arch = "x86_64")]
+use crate::simd::Avx;
+use crate::simd::Lanes8;
+
+/// A leaf's groups, two at a time while two are left (a leaf holds one or two groups, more
+/// only where many triangles share one centre).
+enum LeafGroups<'g> {
+    Pair(GroupPair<'g>),
+    One(&'g TriangleGroup),
+}
+
+/// The groups of a leaf (`leaf`), in order, two at a time.
+#[inline(always)]
+fn in_pairs(leaf: &[TriangleGroup]) -> impl Iterator<Item = LeafGroups<'_>> {
+    leaf.chunks(2).map(|groups| match groups {
+        [first, second] => LeafGroups::Pair(GroupPair { first, second }),
+        [one] => LeafGroups::One(one),
+        _ => unreachable!("chunks of one or two"),
+    })
+}
+
+/// The nearest hit along `q` with t in (t_min, t_max) on the mesh of `bvh` and `groups`,
+/// walked in the lanes of `l`: a leaf's groups are tested two at a time (`GroupPair`), each
+/// pair finding what its groups find one after the other.
+#[inline(always)]
+pub(super) fn mesh_closest<L: Lanes8>(
+    l: L,
+    bvh: &Bvh,
+    groups: &[TriangleGroup],
+    q: &RayQuery,
+    t_min: f32,
+    t_max: f32,
+) -> Option<ShapeHit> {
+    let ray = GroupRay::new(q);
+    let pair_ray = LaneRay::in_lanes(l, q);
+    let mut best = None;
+    bvh.closest_with(
+        l,
+        q,
+        t_max,
+        #[inline(always)]
+        |leaf, mut t_max| {
+            let mut nearest = None;
+            // The index of the pair's (or the lone group's) first group.
+            let mut index = leaf.start;
+            for groups in in_pairs(&groups[leaf.start as usize..leaf.end as usize]) {
+                let (found, group) = match groups {
+                    LeafGroups::Pair(pair) => {
+                        let found = pair.closest(l, q, &pair_ray, t_min, t_max);
+                        let second = found
+                            .is_some_and(|(triangle, _)| triangle >= pair.second.triangles().start);
+                        (found, index + second as u32)
+                    }
+                    LeafGroups::One(group) => (group.closest(q, &ray, t_min, t_max), index),
+                };
+                index += 2;
+                if let Some((triangle, hit)) = found {
+                    t_max = hit.t;
+                    nearest = Some(hit.t);
+                    best = Some(ShapeHit {
+                        t: hit.t,
+                        detail: HitDetail::Mesh {
+                            triangle,
+                            group,
+                            b: hit.b,
+                        },
+                    });
+                }
+            }
+            nearest
+        },
+    );
+    best
+}
+
+/// One of a placed mesh's groups of triangles that primary rays through a first-hit tile
+/// may meet, with a lower bound on the distance of its hits along a ray from the eye.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ListedGroup {
+    /// Index into the model's groups.
+    pub group: u32,
+    /// No hit on the group's triangles lies nearer the eye than this.
+    pub min_t: f32,
+}
+
+/// The nearest hit along `q` with t in (0, t_max) among the groups `listed` (nearest box
+/// first), tested two at a time in the lanes of `l`.
+#[inline(always)]
+pub(super) fn listed_closest<L: Lanes8>(
+    l: L,
+    groups: &[TriangleGroup],
+    listed: &[ListedGroup],
+    q: &RayQuery,
+    mut t_max: f32,
+) -> Option<ShapeHit> {
+    let pair_ray = LaneRay::in_lanes(l, q);
+    let mut best = None;
+    for pair in listed.chunks(2) {
+        if pair[0].min_t >= t_max {
+            break; // this pair and every later one start beyond the nearest hit
+        }
+        let (found, group) = match pair {
+            [a, b] => {
+                let (first, second) = (&groups[a.group as usize], &groups[b.group as usize]);
+                let found = GroupPair { first, second }.closest(l, q, &pair_ray, 0.0, t_max);
+                let in_second =
+                    found.is_some_and(|(triangle, _)| second.triangles().contains(&triangle));
+                (found, if in_second { b.group } else { a.group })
+            }
+            [a] => {
+                let ray = GroupRay::new(q);
+                (
+                    groups[a.group as usize].closest(q, &ray, 0.0, t_max),
+                    a.group,
+                )
+            }
+            _ => unreachable!("chunks of one or two"),
+        };
+        if let Some((triangle, hit)) = found {
+            t_max = hit.t;
+            best = Some(ShapeHit {
+                t: hit.t,
+                detail: HitDetail::Mesh {
+                    triangle,
+                    group,
+                    b: hit.b,
+                },
+            });
+        }
+    }
+    best
+}
+
+/// `listed_closest` compiled for AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+pub(super) fn listed_closest_avx2(
+    avx: Avx,
+    groups: &[TriangleGroup],
+    listed: &[ListedGroup],
+    q: &RayQuery,
+    t_max: f32,
+) -> Option<ShapeHit> {
+    listed_closest(avx, groups, listed, q, t_max)
+}
+
+/// `mesh_closest` compiled for AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+pub(super) fn mesh_closest_avx2(
+    avx: Avx,
+    bvh: &Bvh,
+    groups: &[TriangleGroup],
+    q: &RayQuery,
+    t_min: f32,
+    t_max: f32,
+) -> Option<ShapeHit> {
+    mesh_closest(avx, bvh, groups, q, t_min, t_max)
+}
+
+/// Whether anything of the mesh of `bvh` and `groups` lies on the segment (0, t_max) of
+/// `q`, walked as `mesh_closest` walks it.
+#[inline(always)]
+pub(super) fn mesh_occludes<L: Lanes8>(
+    l: L,
+    bvh: &Bvh,
+    groups: &[TriangleGroup],
+    q: &RayQuery,
+    t_max: f32,
+) -> bool {
+    let ray = GroupRay::new(q);
+    let pair_ray = LaneRay::in_lanes(l, q);
+    let mut hit = false;
+    bvh.visit_with(
+        l,
+        q,
+        t_max,
+        #[inline(always)]
+        |leaf| {
+            hit =
+                in_pairs(&groups[leaf.start as usize..leaf.end as usize]).any(
+                    |groups| match groups {
+                        LeafGroups::Pair(pair) => pair.any(l, q, &pair_ray, 0.0, t_max),
+                        LeafGroups::One(group) => group.any(q, &ray, 0.0, t_max),
+                    },
+                );
+            !hit
+        },
+    );
+    hit
+}
+
+/// `mesh_occludes` compiled for AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+pub(super) fn mesh_occludes_avx2(
+    avx: Avx,
+    bvh: &Bvh,
+    groups: &[TriangleGroup],
+    q: &RayQuery,
+    t_max: f32,
+) -> bool {
+    mesh_occludes(avx, bvh, groups, q, t_max)
+}
