@@ -15,15 +15,14 @@
 //! its box covers but no part of it does are then background, with no ray traced.
 
 use super::instance::Instance;
-use super::mesh_listing::{MAX_LISTED_GROUPS, mesh_listing};
-use super::mesh_search::ListedGroup;
+use super::mesh_listing::MeshListing;
 use super::outline::mesh_coverage;
 use super::primitive::{Primitive, Surface};
 use super::tile_projection::{
     ImageProjection, ProjectedTriangle, TILE, TileRectangle, lower_bound_distance,
 };
 use crate::camera::CameraRays;
-use crate::geometry::{Aabb, Shape};
+use crate::geometry::{Aabb, Shape, TriangleOctet};
 
 /// A tile covered by more boxes than this is left to the BVH.
 pub const MAX_CANDIDATES: usize = 12;
@@ -37,18 +36,18 @@ pub struct Candidate {
     /// the distance from the eye to its box, rounded down by a relative 10⁻⁴ to cover the
     /// rounding of a computed hit distance.
     pub min_t: f32,
-    /// For a placed mesh, the groups of its triangles that the tile's rays may meet are
-    /// `FirstHitTiles::listed[listed_start..][..listed_len]`, nearest box first; none
-    /// (`listed_len` 0) where its own hierarchy is searched instead.
+    /// For a placed mesh, the triangles that the tile's rays may meet are those of the
+    /// octets `FirstHitTiles::listed[listed_start..][..listed_len]`, nearest box first;
+    /// none (`listed_len` 0) where its own hierarchy is searched instead.
     pub listed_start: u32,
     /// See `listed_start`.
     pub listed_len: u32,
 }
 
 impl Candidate {
-    /// Its listed groups among the tiles' `listed`, if it has any.
+    /// Its listed octets among the tiles' `listed`, if it has any.
     #[inline(always)]
-    pub fn listed<'a>(&self, listed: &'a [ListedGroup]) -> Option<&'a [ListedGroup]> {
+    pub fn listed<'a>(&self, listed: &'a [TriangleOctet]) -> Option<&'a [TriangleOctet]> {
         (self.listed_len > 0).then(|| {
             &listed[self.listed_start as usize..(self.listed_start + self.listed_len) as usize]
         })
@@ -66,8 +65,9 @@ pub struct FirstHitTiles {
     candidates: Vec<Candidate>,
     /// Tiles covered by more than `MAX_CANDIDATES` boxes, left to the BVH.
     crowded: Vec<bool>,
-    /// The groups of placed meshes listed for tiles (`Candidate::listed_start`).
-    listed: Vec<ListedGroup>,
+    /// The triangles of placed meshes listed for tiles, eight to an octet
+    /// (`Candidate::listed_start`).
+    listed: Vec<TriangleOctet>,
 }
 
 impl FirstHitTiles {
@@ -122,8 +122,27 @@ impl FirstHitTiles {
             };
         }
 
+        // Placed meshes' triangles by tile, where it pays (mesh_listing.rs).
+        let listings: Vec<Option<MeshListing>> = primitives
+            .iter()
+            .zip(&rectangles)
+            .map(
+                |(primitive, rectangle)| match (&primitive.surface, rectangle) {
+                    (Surface::Instance(instance), Some(rectangle)) if mesh_groups => {
+                        MeshListing::new(instance, *rectangle, &projection)
+                    }
+                    _ => None,
+                },
+            )
+            .collect();
+        let mut listed = Vec::with_capacity(
+            listings
+                .iter()
+                .flatten()
+                .map(MeshListing::octet_count)
+                .sum(),
+        );
         let mut per_tile: Vec<Vec<Candidate>> = vec![Vec::new(); tile_count];
-        let mut listed = Vec::new();
         for (index, (primitive, rectangle)) in primitives.iter().zip(&rectangles).enumerate() {
             let bounds = primitive.surface.bounds();
             let (lo, hi) = (bounds.min.as_dvec3(), bounds.max.as_dvec3());
@@ -136,25 +155,19 @@ impl FirstHitTiles {
                 listed_start: 0,
                 listed_len: 0,
             };
-            let listing = match &primitive.surface {
-                Surface::Instance(instance) if mesh_groups => {
-                    mesh_listing(instance, (x0, y0, x1, y1), &projection)
-                }
-                _ => None,
-            };
-            if let Some(listing) = listing {
-                let columns = x1 - x0 + 1;
+            if let Some(listing) = &listings[index] {
                 for ty in y0..=y1 {
                     for tx in x0..=x1 {
-                        let groups = &listing[((ty - y0) * columns + (tx - x0)) as usize];
-                        if groups.is_empty() {
-                            continue; // none of its triangles can cover the tile
-                        }
                         let mut candidate = candidate;
-                        if groups.len() <= MAX_LISTED_GROUPS {
-                            candidate.listed_start = listed.len() as u32;
-                            candidate.listed_len = groups.len() as u32;
-                            listed.extend_from_slice(groups);
+                        match listing.at(tx, ty) {
+                            Some([]) => continue, // nothing of it here
+                            Some(triangles) => {
+                                let start = listed.len();
+                                listing.push_octets(triangles, &mut listed);
+                                candidate.listed_start = start as u32;
+                                candidate.listed_len = (listed.len() - start) as u32;
+                            }
+                            None => {} // too many triangles: the walk
                         }
                         per_tile[(ty * tiles_x + tx) as usize].push(candidate);
                     }
@@ -207,9 +220,9 @@ impl FirstHitTiles {
         }
     }
 
-    /// The groups of placed meshes that candidates list (`Candidate::listed`).
+    /// The octets of placed meshes' triangles that candidates list (`Candidate::listed`).
     #[inline(always)]
-    pub fn listed(&self) -> &[ListedGroup] {
+    pub fn listed(&self) -> &[TriangleOctet] {
         &self.listed
     }
 
@@ -248,7 +261,7 @@ impl FirstHitTiles {
                 census.candidates += list.len();
                 for c in list.iter().filter(|c| c.listed_len > 0) {
                     census.listing += 1;
-                    census.listed_groups += c.listed_len as usize;
+                    census.listed_octets += c.listed_len as usize;
                 }
             }
         }
@@ -267,10 +280,10 @@ pub struct TileCensus {
     pub crowded: usize,
     /// Candidates summed over the tiles that are not crowded.
     pub candidates: usize,
-    /// Those of them that list a placed mesh's groups (`Candidate::listed`).
+    /// Those of them that list a placed mesh's triangles (`Candidate::listed`).
     pub listing: usize,
-    /// The groups they list, in all.
-    pub listed_groups: usize,
+    /// The octets of triangles they list, in all.
+    pub listed_octets: usize,
 }
 
 /// Where within its box's tile rectangle a primitive's surface may lie, where that is

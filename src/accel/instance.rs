@@ -5,12 +5,12 @@
 
 use super::bvh::{Bvh, LeafCost};
 use super::bvh_build::BinaryBvh;
-use super::mesh_search::{ListedGroup, listed_closest, mesh_closest, mesh_occludes};
+use super::mesh_search::{listed_closest, mesh_closest, mesh_occludes};
 #[cfg(target_arch = "x86_64")]
 use super::mesh_search::{listed_closest_avx2, mesh_closest_avx2, mesh_occludes_avx2};
 use crate::geometry::{
     Aabb, GROUP_WIDTH, GroupRay, HitDetail, Mesh, Ray, RayQuery, Shape, ShapeHit, SurfacePoint,
-    Transform, TriangleGroup, UvFrame,
+    Transform, TriangleGroup, TriangleOctet, UvFrame,
 };
 use crate::simd::Halves;
 use glam::Vec3A;
@@ -122,22 +122,27 @@ impl Model {
         }
     }
 
-    /// The nearest hit with t in (0, t_max) among the groups `listed` (a first-hit tile's,
-    /// nearest box first): what `intersect_after` from 0 finds. None for a shape, which
-    /// lists none.
+    /// The nearest hit with t in (0, t_max) among the triangles of `listed` (a first-hit
+    /// tile's octets, nearest first): what `intersect_after` from 0 finds. None for a
+    /// shape, which lists none.
     #[inline(never)]
-    fn nearest_listed(&self, q: &RayQuery, listed: &[ListedGroup], t_max: f32) -> Option<ShapeHit> {
-        let Model::Mesh { groups, .. } = self else {
+    fn nearest_listed(
+        &self,
+        q: &RayQuery,
+        listed: &[TriangleOctet],
+        t_max: f32,
+    ) -> Option<ShapeHit> {
+        if let Model::Shape(_) = self {
             return None;
-        };
+        }
         #[cfg(target_arch = "x86_64")]
         let found = match crate::isa::avx2_lanes() {
             // SAFETY: an `Avx` exists only where the processor has AVX2.
-            Some(avx) => unsafe { listed_closest_avx2(avx, groups, listed, q, t_max) },
-            None => listed_closest(Halves, groups, listed, q, t_max),
+            Some(avx) => unsafe { listed_closest_avx2(avx, listed, q, t_max) },
+            None => listed_closest(Halves, listed, q, t_max),
         };
         #[cfg(not(target_arch = "x86_64"))]
-        let found = listed_closest(Halves, groups, listed, q, t_max);
+        let found = listed_closest(Halves, listed, q, t_max);
         // Two triangles can both be hit at one distance only where the ray meets the edge
         // (or corner) they share, exactly: a barycentric weight of 0 on each. Which of them
         // a search returns then depends on the order it tests them in, so the hierarchy's
@@ -287,12 +292,12 @@ impl Instance {
         self.model.intersect_after(&self.local(q), t_min, t_max)
     }
 
-    /// The nearest hit with t in (0, t_max) among its model's groups `listed`.
+    /// The nearest hit with t in (0, t_max) among its model's triangles `listed`.
     #[inline]
     pub fn nearest_listed(
         &self,
         q: &RayQuery,
-        listed: &[ListedGroup],
+        listed: &[TriangleOctet],
         t_max: f32,
     ) -> Option<ShapeHit> {
         if self.identity {

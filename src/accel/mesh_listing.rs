@@ -1,114 +1,171 @@
-//! A placed mesh listed group by group in the first-hit tiles: for each tile, the groups
-//! of its triangles (`TriangleGroup`, four to a group) that a primary ray through the tile
-//! may meet, nearest box first. A ray then tests those groups, two at a time, instead of
-//! walking the mesh's hierarchy from its root (mesh_search.rs): on the bunny of `prism
-//! bench speed` a tile lists six or seven groups, and most rays stop after the first pair or
-//! two. A group is listed where any of its triangles' outlines may fall, so the list holds
-//! every triangle a ray through the tile can hit.
+//! A placed mesh listed triangle by triangle in the first-hit tiles: for each tile, the
+//! triangles that a primary ray through the tile may meet, nearest box first, eight to an
+//! octet (`TriangleOctet`, their corners side by side in eight lanes). A ray then tests
+//! those octets instead of walking the mesh's hierarchy from its root (mesh_search.rs), and
+//! stops at the first octet that starts beyond its nearest hit. A triangle is listed where
+//! its projected outline may fall, so the list holds every triangle a ray through the tile
+//! can hit.
 
 use super::instance::{Instance, Model};
-use super::mesh_search::ListedGroup;
 use super::tile_projection::{
     ImageProjection, ProjectedTriangle, TileRectangle, lower_bound_distance,
 };
-use crate::geometry::GROUP_WIDTH;
-use glam::{DAffine3, DVec3, Vec3};
+use crate::geometry::{TriangleGroup, TriangleOctet};
+use glam::{DAffine3, DVec3, Vec3, Vec3A};
 
-/// A placed mesh whose groups more than this many of a tile's rays could meet is left to
-/// its own hierarchy there.
-pub const MAX_LISTED_GROUPS: usize = 16;
+/// A placed mesh whose triangles that a tile's rays may meet fill more than this many
+/// octets is left to its own hierarchy there.
+pub const MAX_LISTED_OCTETS: usize = 4;
 
-/// A placed mesh is listed group by group only when it has at most this many groups per
-/// tile of its rectangle: a finer mesh would crowd every tile past `MAX_LISTED_GROUPS`.
+/// Triangles per octet.
+const OCTET: usize = 8;
+
+/// A placed mesh is listed triangle by triangle only when it has at most this many groups
+/// of four triangles per tile of its rectangle: a finer mesh would crowd every tile past
+/// `MAX_LISTED_OCTETS`, and listing it would cost more than it spares.
 const GROUPS_PER_TILE: usize = 4;
 
-/// For each tile of `rectangle` (the instance's box's, row by row), the groups of a placed
-/// mesh's triangles that primary rays through it may meet, nearest box first: a group is
-/// listed in the tiles its triangles' outlines may cover (all of its box's rectangle when a
-/// triangle has no outline). None for a shape, or a mesh too fine for its rectangle.
-pub(super) fn mesh_listing(
-    instance: &Instance,
-    (x0, y0, x1, y1): TileRectangle,
-    projection: &ImageProjection,
-) -> Option<Vec<Vec<ListedGroup>>> {
-    let Model::Mesh { groups, .. } = &**instance.model() else {
-        return None;
-    };
-    let columns = x1 - x0 + 1;
-    let area = (columns * (y1 - y0 + 1)) as usize;
-    if groups.len() > GROUPS_PER_TILE * area {
-        return None;
-    }
-    let to_scene = instance.transform().to_scene();
-    let to_scene = DAffine3::from_cols_array(&to_scene.to_cols_array().map(f64::from));
-    let mut listing: Vec<Vec<ListedGroup>> = vec![Vec::new(); area];
-    for (index, group) in groups.iter().enumerate() {
-        let mut points = [[DVec3::ZERO; 3]; GROUP_WIDTH];
-        let count = group.triangles().len();
-        for (corners, triangle) in points.iter_mut().zip(group.triangles()) {
-            *corners = group
-                .corners_of(triangle)
-                .map(|c| to_scene.transform_point3(Vec3::from(c).as_dvec3()));
-        }
-        let points = &points[..count];
-        let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
-        for p in points.iter().flatten() {
-            (lo, hi) = (lo.min(*p), hi.max(*p));
-        }
-        let listed = ListedGroup {
-            group: index as u32,
-            min_t: lower_bound_distance(projection.eye, lo, hi),
+/// A triangle listed in a tile: the lower bound of its hits' distance from the eye, its
+/// group, and its index in the mesh.
+type Listed = (f32, u32, u32);
+
+/// A placed mesh's triangles listed by tile.
+pub(super) struct MeshListing<'m> {
+    /// The mesh's groups, which hold the triangles' corners.
+    groups: &'m [TriangleGroup],
+    /// The rectangle's first tile, and its width in tiles.
+    x0: u32,
+    y0: u32,
+    columns: u32,
+    /// For each tile of the rectangle, row by row, its triangles nearest box first; None
+    /// where they would fill more than `MAX_LISTED_OCTETS`.
+    tiles: Vec<Option<Vec<Listed>>>,
+}
+
+impl<'m> MeshListing<'m> {
+    /// The triangles of the mesh placed by `instance` that primary rays through each tile of
+    /// `rectangle` (the instance's box's) may meet: a triangle is listed in the tiles its
+    /// outline may cover (all of its box's rectangle when it has no outline). None for a
+    /// shape, or a mesh too fine for its rectangle.
+    pub(super) fn new(
+        instance: &'m Instance,
+        (x0, y0, x1, y1): TileRectangle,
+        projection: &ImageProjection,
+    ) -> Option<Self> {
+        let Model::Mesh { groups, .. } = &**instance.model() else {
+            return None;
         };
-        for (outline, (a0, b0, a1, b1)) in group_outlines(points, lo, hi, projection) {
-            for ty in b0.max(y0)..=b1.min(y1) {
-                for tx in a0.max(x0)..=a1.min(x1) {
-                    let list = &mut listing[((ty - y0) * columns + (tx - x0)) as usize];
-                    // Listed once, however many of its triangles cover the tile.
-                    let listed_here = list.last().is_some_and(|l| l.group == listed.group);
-                    if !listed_here && outline.is_none_or(|o| o.may_cover_tile(tx, ty)) {
-                        list.push(listed);
+        let columns = x1 - x0 + 1;
+        let area = (columns * (y1 - y0 + 1)) as usize;
+        if groups.len() > GROUPS_PER_TILE * area {
+            return None;
+        }
+        let to_scene = instance.transform().to_scene();
+        let to_scene = DAffine3::from_cols_array(&to_scene.to_cols_array().map(f64::from));
+        let mut tiles: Vec<Vec<Listed>> = vec![Vec::new(); area];
+        for (index, group) in groups.iter().enumerate() {
+            for triangle in group.triangles() {
+                let corners = group
+                    .corners_of(triangle)
+                    .map(|c| to_scene.transform_point3(Vec3::from(c).as_dvec3()));
+                let lo = corners[0].min(corners[1]).min(corners[2]);
+                let hi = corners[0].max(corners[1]).max(corners[2]);
+                let Some((outline, (a0, b0, a1, b1))) =
+                    triangle_outline(&corners, lo, hi, projection)
+                else {
+                    continue;
+                };
+                let listed = (
+                    lower_bound_distance(projection.eye, lo, hi),
+                    index as u32,
+                    triangle,
+                );
+                for ty in b0.max(y0)..=b1.min(y1) {
+                    for tx in a0.max(x0)..=a1.min(x1) {
+                        if outline.is_none_or(|o| o.may_cover_tile(tx, ty)) {
+                            tiles[((ty - y0) * columns + (tx - x0)) as usize].push(listed);
+                        }
                     }
                 }
             }
         }
+        let tiles = tiles
+            .into_iter()
+            .map(|mut triangles| {
+                (triangles.len() <= MAX_LISTED_OCTETS * OCTET).then(|| {
+                    // Stable, so equal distances keep the triangles' order.
+                    triangles.sort_by(|a, b| a.0.total_cmp(&b.0));
+                    triangles
+                })
+            })
+            .collect();
+        Some(Self {
+            groups,
+            x0,
+            y0,
+            columns,
+            tiles,
+        })
     }
-    for groups in &mut listing {
-        // Stable, so equal distances keep the groups' order.
-        groups.sort_by(|a, b| a.min_t.total_cmp(&b.min_t));
+
+    /// The triangles listed in tile (tx, ty) of the rectangle, nearest box first; None
+    /// where too many are, and the mesh's hierarchy must be walked.
+    pub(super) fn at(&self, tx: u32, ty: u32) -> Option<&[Listed]> {
+        self.tiles[((ty - self.y0) * self.columns + (tx - self.x0)) as usize].as_deref()
     }
-    Some(listing)
+
+    /// How many octets all the tiles' lists fill.
+    pub(super) fn octet_count(&self) -> usize {
+        self.tiles
+            .iter()
+            .flatten()
+            .map(|t| t.len().div_ceil(OCTET))
+            .sum()
+    }
+
+    /// The octets of `triangles` (one tile's, nearest box first), in order, onto `octets`.
+    pub(super) fn push_octets(&self, triangles: &[Listed], octets: &mut Vec<TriangleOctet>) {
+        for chunk in triangles.chunks(OCTET) {
+            let mut ids = [(0, 0); OCTET];
+            let mut corners = [[Vec3A::ZERO; 3]; OCTET];
+            for (i, &(_, group, triangle)) in chunk.iter().enumerate() {
+                ids[i] = (triangle, group);
+                corners[i] = self.groups[group as usize].corners_of(triangle);
+            }
+            let n = chunk.len();
+            octets.push(TriangleOctet::new(&ids[..n], &corners[..n], chunk[0].0));
+        }
+    }
 }
 
-/// The outlines of a group's triangles (corners `points`, inside the box lo..hi), each with
-/// the tiles it may cover. With every corner of a triangle well in front of the eye, its
-/// rectangle is that of its projected corners, and it has an outline unless it is seen
-/// edge-on; otherwise the group's box's rectangle stands for it, with no outline. A
-/// triangle that no primary ray can reach is left out.
-fn group_outlines(
-    points: &[[DVec3; 3]],
+/// The outline of a triangle (corners `corners`, inside the box lo..hi) and the tiles it
+/// may cover, or None when no primary ray can reach it. With every corner well in front of
+/// the eye the rectangle is that of its projected corners, and it has an outline unless it
+/// is seen edge-on; otherwise the rectangle is the box's, with no outline.
+fn triangle_outline(
+    corners: &[DVec3; 3],
     lo: DVec3,
     hi: DVec3,
     projection: &ImageProjection,
-) -> impl Iterator<Item = (Option<ProjectedTriangle>, TileRectangle)> {
-    points.iter().filter_map(move |corners| {
-        let mut pixels = [(0.0, 0.0); 3];
-        for (pixel, &p) in pixels.iter_mut().zip(corners) {
-            let Some(xy) = projection.point(p) else {
-                return Some((None, projection.box_tiles(lo, hi)?));
-            };
-            *pixel = xy;
-        }
-        let min = pixels.iter().fold((f64::INFINITY, f64::INFINITY), |m, p| {
-            (m.0.min(p.0), m.1.min(p.1))
-        });
-        let max = pixels
-            .iter()
-            .fold((f64::NEG_INFINITY, f64::NEG_INFINITY), |m, p| {
-                (m.0.max(p.0), m.1.max(p.1))
-            });
-        Some((
-            ProjectedTriangle::new(pixels),
-            projection.extent_tiles(min, max)?,
-        ))
-    })
+) -> Option<(Option<ProjectedTriangle>, TileRectangle)> {
+    let mut pixels = [(0.0, 0.0); 3];
+    for (pixel, &p) in pixels.iter_mut().zip(corners) {
+        let Some(xy) = projection.point(p) else {
+            return Some((None, projection.box_tiles(lo, hi)?));
+        };
+        *pixel = xy;
+    }
+    let (xs, ys) = (pixels.map(|p| p.0), pixels.map(|p| p.1));
+    let min = (
+        xs.into_iter().fold(f64::INFINITY, f64::min),
+        ys.into_iter().fold(f64::INFINITY, f64::min),
+    );
+    let max = (
+        xs.into_iter().fold(f64::NEG_INFINITY, f64::max),
+        ys.into_iter().fold(f64::NEG_INFINITY, f64::max),
+    );
+    Some((
+        ProjectedTriangle::new(pixels),
+        projection.extent_tiles(min, max)?,
+    ))
 }

@@ -1,10 +1,13 @@
 //! A mesh's triangles searched for a ray: by walking its hierarchy (the nearest hit, or
-//! any hit on a segment), or, for a primary ray, among the groups a first-hit tile lists
+//! any hit on a segment), or, for a primary ray, among the triangles a first-hit tile lists
 //! (mesh_listing.rs). A leaf's groups are tested two at a time in eight lanes
-//! (`GroupPair`), compiled for AVX2 where the processor has it.
+//! (`GroupPair`), a tile's triangles eight at a time (`TriangleOctet`), compiled for AVX2
+//! where the processor has it.
 
 use super::bvh::Bvh;
-use crate::geometry::{GroupPair, GroupRay, HitDetail, LaneRay, RayQuery, ShapeHit, TriangleGroup};
+use crate::geometry::{
+    GroupPair, GroupRay, HitDetail, LaneRay, RayQuery, ShapeHit, TriangleGroup, TriangleOctet,
+};
 #[cfg(target_arch = "x86_64")]
 use crate::simd::Avx;
 use crate::simd::Lanes8;
@@ -80,50 +83,22 @@ pub(super) fn mesh_closest<L: Lanes8>(
     best
 }
 
-/// One of a placed mesh's groups of triangles that primary rays through a first-hit tile
-/// may meet, with a lower bound on the distance of its hits along a ray from the eye.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ListedGroup {
-    /// Index into the model's groups.
-    pub group: u32,
-    /// No hit on the group's triangles lies nearer the eye than this.
-    pub min_t: f32,
-}
-
-/// The nearest hit along `q` with t in (0, t_max) among the groups `listed` (nearest box
-/// first), tested two at a time in the lanes of `l`.
+/// The nearest hit along `q` with t in (0, t_max) among the triangles of `listed` (a
+/// first-hit tile's octets, nearest first), eight at a time in the lanes of `l`.
 #[inline(always)]
 pub(super) fn listed_closest<L: Lanes8>(
     l: L,
-    groups: &[TriangleGroup],
-    listed: &[ListedGroup],
+    listed: &[TriangleOctet],
     q: &RayQuery,
     mut t_max: f32,
 ) -> Option<ShapeHit> {
-    let pair_ray = LaneRay::in_lanes(l, q);
+    let ray = LaneRay::in_lanes(l, q);
     let mut best = None;
-    for pair in listed.chunks(2) {
-        if pair[0].min_t >= t_max {
-            break; // this pair and every later one start beyond the nearest hit
+    for octet in listed {
+        if octet.min_t >= t_max {
+            break; // this octet and every later one start beyond the nearest hit
         }
-        let (found, group) = match pair {
-            [a, b] => {
-                let (first, second) = (&groups[a.group as usize], &groups[b.group as usize]);
-                let found = GroupPair { first, second }.closest(l, q, &pair_ray, 0.0, t_max);
-                let in_second =
-                    found.is_some_and(|(triangle, _)| second.triangles().contains(&triangle));
-                (found, if in_second { b.group } else { a.group })
-            }
-            [a] => {
-                let ray = GroupRay::new(q);
-                (
-                    groups[a.group as usize].closest(q, &ray, 0.0, t_max),
-                    a.group,
-                )
-            }
-            _ => unreachable!("chunks of one or two"),
-        };
-        if let Some((triangle, hit)) = found {
+        if let Some(((triangle, group), hit)) = octet.closest(l, q, &ray, 0.0, t_max) {
             t_max = hit.t;
             best = Some(ShapeHit {
                 t: hit.t,
@@ -143,12 +118,11 @@ pub(super) fn listed_closest<L: Lanes8>(
 #[target_feature(enable = "avx2")]
 pub(super) fn listed_closest_avx2(
     avx: Avx,
-    groups: &[TriangleGroup],
-    listed: &[ListedGroup],
+    listed: &[TriangleOctet],
     q: &RayQuery,
     t_max: f32,
 ) -> Option<ShapeHit> {
-    listed_closest(avx, groups, listed, q, t_max)
+    listed_closest(avx, listed, q, t_max)
 }
 
 /// `mesh_closest` compiled for AVX2.

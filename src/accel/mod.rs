@@ -37,7 +37,6 @@ pub use csg::{Csg, CsgLeaf, CsgNode, CsgOperation};
 pub use first_hit::{Candidate, FirstHitTiles, TileCensus};
 pub use instance::{Instance, Model};
 pub use light_buffer::{LightBuffer, LightBufferCensus, Occluder};
-pub use mesh_search::ListedGroup;
 pub use primitive::{CSG_MEMBERS_MATERIAL, Primitive, Surface};
 
 /// The most candidates a first-hit tile lists before it is left to the BVH.
@@ -47,7 +46,7 @@ pub use light_buffer::MAX_OCCLUDERS;
 
 use crate::appearance::ShadowFilters;
 use crate::camera::CameraRays;
-use crate::geometry::{Aabb, Ray, RayQuery, ShapeHit, SurfacePoint, UvFrame};
+use crate::geometry::{Aabb, Ray, RayQuery, ShapeHit, SurfacePoint, TriangleOctet, UvFrame};
 use glam::{Vec3, Vec3A};
 use std::sync::Arc;
 
@@ -60,8 +59,8 @@ pub struct AccelOptions {
     pub bvh: bool,
     /// Primary rays look up what they can hit first by tile (first_hit.rs).
     pub first_hit_tiles: bool,
-    /// The first-hit tiles list a placed mesh's groups of triangles, so that a primary ray
-    /// tests those rather than walking the mesh's hierarchy (mesh_listing.rs).
+    /// The first-hit tiles list a placed mesh's triangles, so that a primary ray tests
+    /// those rather than walking the mesh's hierarchy (mesh_listing.rs).
     pub mesh_groups: bool,
     /// Shadow rays look up what they may meet by their direction from the light
     /// (light_buffer.rs).
@@ -125,9 +124,9 @@ pub enum Reach<'a> {
         t_min: f32,
     },
     /// A primary ray that can only hit these first, nearest box first (a first-hit tile);
-    /// an empty list means it hits nothing. The groups the candidates list are in the
+    /// an empty list means it hits nothing. The triangles the candidates list are in the
     /// second slice ([`Candidate::listed`]).
-    Among(&'a [Candidate], &'a [ListedGroup]),
+    Among(&'a [Candidate], &'a [TriangleOctet]),
 }
 
 /// The primitives of a scene and every structure built to find what rays meet among them.
@@ -393,7 +392,7 @@ impl Accelerator {
         &self,
         q: &RayQuery,
         candidates: &[Candidate],
-        listed: &[ListedGroup],
+        listed: &[TriangleOctet],
     ) -> Option<Hit> {
         let mut best: Option<Hit> = None;
         let mut t_max = f32::INFINITY;

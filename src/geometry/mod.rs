@@ -31,5 +31,5 @@ pub use sphere::Sphere;
 pub use torus::Torus;
 pub use transform::Transform;
 pub use triangle::{Triangle, TriangleHit};
-pub use triangle_group::{GROUP_WIDTH, GroupPair, GroupRay, LaneRay, TriangleGroup};
+pub use triangle_group::{GROUP_WIDTH, GroupPair, GroupRay, LaneRay, TriangleGroup, TriangleOctet};
 pub use uv_frame::UvFrame;
