@@ -10,7 +10,7 @@ use super::instance::{Instance, Model};
 use super::tile_projection::{
     ImageProjection, ProjectedTriangle, TileRectangle, lower_bound_distance,
 };
-use crate::geometry::{TriangleGroup, TriangleOctet};
+use crate::geometry::{GROUP_WIDTH, TriangleGroup, TriangleOctet};
 use glam::{DAffine3, DVec3, Vec3, Vec3A};
 
 /// A placed mesh whose triangles that a tile's rays may meet fill more than this many
@@ -62,7 +62,10 @@ impl<'m> MeshListing<'m> {
         }
         let to_scene = instance.transform().to_scene();
         let to_scene = DAffine3::from_cols_array(&to_scene.to_cols_array().map(f64::from));
-        let mut tiles: Vec<Vec<Listed>> = vec![Vec::new(); area];
+        // Every triangle a primary ray can reach, with its outline and tiles, nearest box
+        // first (stable: equal distances keep the mesh's order), so that each tile's list,
+        // filled in this order, comes out sorted.
+        let mut reached = Vec::with_capacity(groups.len() * GROUP_WIDTH);
         for (index, group) in groups.iter().enumerate() {
             for triangle in group.triangles() {
                 let corners = group
@@ -70,34 +73,32 @@ impl<'m> MeshListing<'m> {
                     .map(|c| to_scene.transform_point3(Vec3::from(c).as_dvec3()));
                 let lo = corners[0].min(corners[1]).min(corners[2]);
                 let hi = corners[0].max(corners[1]).max(corners[2]);
-                let Some((outline, (a0, b0, a1, b1))) =
-                    triangle_outline(&corners, lo, hi, projection)
-                else {
-                    continue;
-                };
-                let listed = (
-                    lower_bound_distance(projection.eye, lo, hi),
-                    index as u32,
-                    triangle,
-                );
-                for ty in b0.max(y0)..=b1.min(y1) {
-                    for tx in a0.max(x0)..=a1.min(x1) {
-                        if outline.is_none_or(|o| o.may_cover_tile(tx, ty)) {
-                            tiles[((ty - y0) * columns + (tx - x0)) as usize].push(listed);
-                        }
+                if let Some((outline, rectangle)) = triangle_outline(&corners, lo, hi, projection) {
+                    let listed = (
+                        lower_bound_distance(projection.eye, lo, hi),
+                        index as u32,
+                        triangle,
+                    );
+                    reached.push((listed, outline, rectangle));
+                }
+            }
+        }
+        let mut order: Vec<u32> = (0..reached.len() as u32).collect();
+        order.sort_by(|&a, &b| reached[a as usize].0.0.total_cmp(&reached[b as usize].0.0));
+        let mut tiles: Vec<Vec<Listed>> = vec![Vec::new(); area];
+        for &i in &order {
+            let (listed, outline, (a0, b0, a1, b1)) = &reached[i as usize];
+            for ty in (*b0).max(y0)..=(*b1).min(y1) {
+                for tx in (*a0).max(x0)..=(*a1).min(x1) {
+                    if outline.is_none_or(|o| o.may_cover_tile(tx, ty)) {
+                        tiles[((ty - y0) * columns + (tx - x0)) as usize].push(*listed);
                     }
                 }
             }
         }
         let tiles = tiles
             .into_iter()
-            .map(|mut triangles| {
-                (triangles.len() <= MAX_LISTED_OCTETS * OCTET).then(|| {
-                    // Stable, so equal distances keep the triangles' order.
-                    triangles.sort_by(|a, b| a.0.total_cmp(&b.0));
-                    triangles
-                })
-            })
+            .map(|triangles| (triangles.len() <= MAX_LISTED_OCTETS * OCTET).then_some(triangles))
             .collect();
         Some(Self {
             groups,
