@@ -6,7 +6,8 @@
 
 use super::bvh::Bvh;
 use crate::geometry::{
-    GroupPair, GroupRay, HitDetail, LaneRay, RayQuery, ShapeHit, TriangleGroup, TriangleOctet,
+    GroupPair, GroupRay, HitDetail, LaneRay, RayQuery, ShapeHit, TriangleGroup, TriangleHit,
+    TriangleOctet,
 };
 #[cfg(target_arch = "x86_64")]
 use crate::simd::Avx;
@@ -27,6 +28,19 @@ fn in_pairs(leaf: &[TriangleGroup]) -> impl Iterator<Item = LeafGroups<'_>> {
         [one] => LeafGroups::One(one),
         _ => unreachable!("chunks of one or two"),
     })
+}
+
+/// The hit `hit` on triangle `triangle` of the mesh, held by its group `group`.
+#[inline(always)]
+fn mesh_hit(triangle: u32, group: u32, hit: TriangleHit) -> ShapeHit {
+    ShapeHit {
+        t: hit.t,
+        detail: HitDetail::Mesh {
+            triangle,
+            group,
+            b: hit.b,
+        },
+    }
 }
 
 /// The nearest hit along `q` with t in (t_min, t_max) on the mesh of `bvh` and `groups`,
@@ -67,14 +81,7 @@ pub(super) fn mesh_closest<L: Lanes8>(
                 if let Some((triangle, hit)) = found {
                     t_max = hit.t;
                     nearest = Some(hit.t);
-                    best = Some(ShapeHit {
-                        t: hit.t,
-                        detail: HitDetail::Mesh {
-                            triangle,
-                            group,
-                            b: hit.b,
-                        },
-                    });
+                    best = Some(mesh_hit(triangle, group, hit));
                 }
             }
             nearest
@@ -100,14 +107,7 @@ pub(super) fn listed_closest<L: Lanes8>(
         }
         if let Some(((triangle, group), hit)) = octet.closest(l, q, &ray, 0.0, t_max) {
             t_max = hit.t;
-            best = Some(ShapeHit {
-                t: hit.t,
-                detail: HitDetail::Mesh {
-                    triangle,
-                    group,
-                    b: hit.b,
-                },
-            });
+            best = Some(mesh_hit(triangle, group, hit));
         }
     }
     best
