@@ -52,7 +52,7 @@ impl<'m> MeshListing<'m> {
         (x0, y0, x1, y1): TileRectangle,
         projection: &ImageProjection,
     ) -> Option<Self> {
-        let Model::Mesh { groups, .. } = &**instance.model() else {
+        let Model::Mesh { mesh, groups, .. } = &**instance.model() else {
             return None;
         };
         let columns = x1 - x0 + 1;
@@ -65,15 +65,25 @@ impl<'m> MeshListing<'m> {
         // Every triangle a primary ray can reach, with its outline and tiles, nearest box
         // first (stable: equal distances keep the mesh's order), so that each tile's list,
         // filled in this order, comes out sorted.
+        // Each vertex in the scene's space and on the image, once for the triangles that
+        // share it (the groups' copies of the corners are the same bits).
+        let vertices: Vec<(DVec3, Option<(f64, f64)>)> = mesh
+            .positions()
+            .iter()
+            .map(|&p| {
+                let p = to_scene.transform_point3(Vec3::from(p).as_dvec3());
+                (p, projection.point(p))
+            })
+            .collect();
         let mut reached = Vec::with_capacity(groups.len() * GROUP_WIDTH);
         for (index, group) in groups.iter().enumerate() {
             for triangle in group.triangles() {
-                let corners = group
-                    .corners_of(triangle)
-                    .map(|c| to_scene.transform_point3(Vec3::from(c).as_dvec3()));
-                let lo = corners[0].min(corners[1]).min(corners[2]);
-                let hi = corners[0].max(corners[1]).max(corners[2]);
-                if let Some((outline, rectangle)) = triangle_outline(&corners, lo, hi, projection) {
+                let corners = mesh.triangles()[triangle as usize].map(|v| vertices[v as usize]);
+                let points = corners.map(|(p, _)| p);
+                let lo = points[0].min(points[1]).min(points[2]);
+                let hi = points[0].max(points[1]).max(points[2]);
+                let pixels = corners.map(|(_, pixel)| pixel);
+                if let Some((outline, rectangle)) = triangle_outline(pixels, lo, hi, projection) {
                     let listed = (
                         lower_bound_distance(projection.eye, lo, hi),
                         index as u32,
@@ -139,23 +149,21 @@ impl<'m> MeshListing<'m> {
     }
 }
 
-/// The outline of a triangle (corners `corners`, inside the box lo..hi) and the tiles it
-/// may cover, or None when no primary ray can reach it. With every corner well in front of
-/// the eye the rectangle is that of its projected corners, and it has an outline unless it
-/// is seen edge-on; otherwise the rectangle is the box's, with no outline.
+/// The outline of a triangle (inside the box lo..hi, its corners on the image at
+/// `pixels`, None for a corner not well in front of the eye) and the tiles it may cover, or
+/// None when no primary ray can reach it. With every corner well in front of the eye the
+/// rectangle is that of its projected corners, and it has an outline unless it is seen
+/// edge-on; otherwise the rectangle is the box's, with no outline.
 fn triangle_outline(
-    corners: &[DVec3; 3],
+    pixels: [Option<(f64, f64)>; 3],
     lo: DVec3,
     hi: DVec3,
     projection: &ImageProjection,
 ) -> Option<(Option<ProjectedTriangle>, TileRectangle)> {
-    let mut pixels = [(0.0, 0.0); 3];
-    for (pixel, &p) in pixels.iter_mut().zip(corners) {
-        let Some(xy) = projection.point(p) else {
-            return Some((None, projection.box_tiles(lo, hi)?));
-        };
-        *pixel = xy;
-    }
+    let [Some(a), Some(b), Some(c)] = pixels else {
+        return Some((None, projection.box_tiles(lo, hi)?));
+    };
+    let pixels = [a, b, c];
     let (xs, ys) = (pixels.map(|p| p.0), pixels.map(|p| p.1));
     let min = (
         xs.into_iter().fold(f64::INFINITY, f64::min),
