@@ -155,8 +155,8 @@ fn first_hit_tiles_draw_meshes_as_the_bvh_draws_them() {
 }
 
 #[test]
-fn meshes_listed_by_group_draw_what_their_hierarchies_draw() {
-    // Close to the clay bunny, the first-hit tiles list its groups of triangles
+fn meshes_listed_by_tile_draw_what_their_hierarchies_draw() {
+    // Close to the clay bunny, the first-hit tiles list its triangles
     // (mesh_listing.rs), and primary rays test those instead of walking its hierarchy: the
     // image must be what the walk draws, and what the BVH alone draws. The glass bunny
     // beside it sends refracted rays back through it.
@@ -169,7 +169,7 @@ fn meshes_listed_by_group_draw_what_their_hierarchies_draw() {
     )
     .unwrap();
     let listed = prepared(&scene, |_| {});
-    let walked = prepared(&scene, |o| o.mesh_groups = false);
+    let walked = prepared(&scene, |o| o.mesh_triangles = false);
     let traversal = prepared(&scene, |o| o.first_hit_tiles = false);
     let s = RenderSettings::new(640, 480, 2);
     let rays = scene.camera.rays(s.width, s.height);
@@ -329,7 +329,7 @@ fn soft_shadows_draw_the_same_image_with_every_shortcut_off() {
         ),
         ("the light buffers", |o| o.light_buffers = false),
         ("the first-hit tiles", |o| o.first_hit_tiles = false),
-        ("the meshes' listed groups", |o| o.mesh_groups = false),
+        ("the meshes' listed triangles", |o| o.mesh_triangles = false),
         ("the BVH", |o| o.bvh = false),
     ] {
         let without = image(prepared(&scene, off), scene.camera, s);

@@ -16,11 +16,9 @@
 
 use super::instance::Instance;
 use super::mesh_listing::MeshListing;
-use super::outline::mesh_coverage;
+use super::outline::{CellRectangle, mesh_coverage};
 use super::primitive::{Primitive, Surface};
-use super::tile_projection::{
-    ImageProjection, ProjectedTriangle, TILE, TileRectangle, lower_bound_distance,
-};
+use super::tile_projection::{ImageProjection, ProjectedTriangle, TILE, lower_bound_distance};
 use crate::camera::CameraRays;
 use crate::geometry::{Aabb, Shape, TriangleOctet};
 
@@ -72,14 +70,13 @@ pub struct FirstHitTiles {
 
 impl FirstHitTiles {
     /// The lists for an image of `width` × `height` pixels seen through `rays`; with
-    /// `mesh_groups`, placed meshes list the groups of their triangles as well
-    /// (mesh_listing.rs).
+    /// `mesh_triangles`, placed meshes list their triangles as well (mesh_listing.rs).
     pub fn new(
         primitives: &[Primitive],
         rays: &CameraRays,
         width: u32,
         height: u32,
-        mesh_groups: bool,
+        mesh_triangles: bool,
     ) -> Self {
         let tiles_x = width.div_ceil(TILE);
         let tiles_y = height.div_ceil(TILE);
@@ -97,7 +94,7 @@ impl FirstHitTiles {
             }
         };
         // Each primitive's.
-        let rectangles: Vec<Option<TileRectangle>> = primitives
+        let rectangles: Vec<Option<CellRectangle>> = primitives
             .iter()
             .map(|primitive| rectangle_of(&primitive.surface.bounds()))
             .collect();
@@ -128,7 +125,7 @@ impl FirstHitTiles {
             .zip(&rectangles)
             .map(
                 |(primitive, rectangle)| match (&primitive.surface, rectangle) {
-                    (Surface::Instance(instance), Some(rectangle)) if mesh_groups => {
+                    (Surface::Instance(instance), Some(rectangle)) if mesh_triangles => {
                         MeshListing::new(instance, *rectangle, &projection)
                     }
                     _ => None,
@@ -323,7 +320,7 @@ impl Outline {
 fn mesh_outline(
     instance: &Instance,
     rectangle: (u32, u32, u32, u32),
-    rectangle_of: impl Fn(&Aabb) -> Option<TileRectangle>,
+    rectangle_of: impl Fn(&Aabb) -> Option<CellRectangle>,
 ) -> Option<Outline> {
     let covered = mesh_coverage(instance, rectangle, rectangle_of)?;
     let (x0, y0, x1, _) = rectangle;
@@ -585,8 +582,8 @@ mod tests {
     }
 
     #[test]
-    fn meshes_listed_group_by_group_give_every_nearest_hit_the_bvh_gives() {
-        // Large enough images for the bunnies' groups to be listed (mesh_listing.rs): the
+    fn meshes_listed_triangle_by_triangle_give_every_nearest_hit_the_bvh_gives() {
+        // Large enough images for the bunnies' triangles to be listed (mesh_listing.rs): the
         // same triangle at the same distance with the same weights as the walk of each
         // mesh's hierarchy, for the scene's camera, for a view from close by (boxes across
         // the eye's plane, triangles a tile wide) and for one from above.

@@ -5,9 +5,9 @@
 
 use super::bvh::{Bvh, LeafCost};
 use super::bvh_build::BinaryBvh;
-use super::mesh_search::{listed_closest, mesh_closest, mesh_occludes};
+use super::mesh_search::{listed_closest_here, mesh_closest, mesh_occludes};
 #[cfg(target_arch = "x86_64")]
-use super::mesh_search::{listed_closest_avx2, mesh_closest_avx2, mesh_occludes_avx2};
+use super::mesh_search::{mesh_closest_avx2, mesh_occludes_avx2};
 use crate::geometry::{
     Aabb, GROUP_WIDTH, GroupRay, HitDetail, Mesh, Ray, RayQuery, Shape, ShapeHit, SurfacePoint,
     Transform, TriangleGroup, TriangleOctet, UvFrame,
@@ -123,8 +123,8 @@ impl Model {
     }
 
     /// The nearest hit with t in (0, t_max) among the triangles of `listed` (a first-hit
-    /// tile's octets, nearest first): what `intersect_after` from 0 finds. None for a
-    /// shape, which lists none.
+    /// tile's octets of this mesh's triangles, nearest first): what `intersect_after` from
+    /// 0 finds.
     #[inline(never)]
     fn nearest_listed(
         &self,
@@ -132,22 +132,15 @@ impl Model {
         listed: &[TriangleOctet],
         t_max: f32,
     ) -> Option<ShapeHit> {
-        if let Model::Shape(_) = self {
-            return None;
-        }
-        #[cfg(target_arch = "x86_64")]
-        let found = match crate::isa::avx2_lanes() {
-            // SAFETY: an `Avx` exists only where the processor has AVX2.
-            Some(avx) => unsafe { listed_closest_avx2(avx, listed, q, t_max) },
-            None => listed_closest(Halves, listed, q, t_max),
-        };
-        #[cfg(not(target_arch = "x86_64"))]
-        let found = listed_closest(Halves, listed, q, t_max);
+        debug_assert!(
+            matches!(self, Model::Mesh { .. }),
+            "only a mesh lists triangles"
+        );
         // Two triangles can both be hit at one distance only where the ray meets the edge
         // (or corner) they share, exactly: a barycentric weight of 0 on each. Which of them
         // a search returns then depends on the order it tests them in, so the hierarchy's
         // walk, the reference, answers such a ray.
-        match found {
+        match listed_closest_here(listed, q, t_max) {
             Some(ShapeHit {
                 detail: HitDetail::Mesh { b, .. },
                 ..

@@ -7,15 +7,14 @@
 //! can hit.
 
 use super::instance::{Instance, Model};
-use super::tile_projection::{
-    ImageProjection, ProjectedTriangle, TileRectangle, lower_bound_distance,
-};
+use super::outline::CellRectangle;
+use super::tile_projection::{ImageProjection, ProjectedTriangle, lower_bound_distance};
 use crate::geometry::{GROUP_WIDTH, TriangleGroup, TriangleOctet};
 use glam::{DAffine3, DVec3, Vec3, Vec3A};
 
 /// A placed mesh whose triangles that a tile's rays may meet fill more than this many
 /// octets is left to its own hierarchy there.
-pub const MAX_LISTED_OCTETS: usize = 4;
+const MAX_LISTED_OCTETS: usize = 4;
 
 /// Triangles per octet.
 const OCTET: usize = 8;
@@ -49,7 +48,7 @@ impl<'m> MeshListing<'m> {
     /// shape, or a mesh too fine for its rectangle.
     pub(super) fn new(
         instance: &'m Instance,
-        (x0, y0, x1, y1): TileRectangle,
+        (x0, y0, x1, y1): CellRectangle,
         projection: &ImageProjection,
     ) -> Option<Self> {
         let Model::Mesh { mesh, groups, .. } = &**instance.model() else {
@@ -159,7 +158,7 @@ fn triangle_outline(
     lo: DVec3,
     hi: DVec3,
     projection: &ImageProjection,
-) -> Option<(Option<ProjectedTriangle>, TileRectangle)> {
+) -> Option<(Option<ProjectedTriangle>, CellRectangle)> {
     let [Some(a), Some(b), Some(c)] = pixels else {
         return Some((None, projection.box_tiles(lo, hi)?));
     };

@@ -93,7 +93,7 @@ pub(super) fn mesh_closest<L: Lanes8>(
 /// The nearest hit along `q` with t in (0, t_max) among the triangles of `listed` (a
 /// first-hit tile's octets, nearest first), eight at a time in the lanes of `l`.
 #[inline(always)]
-pub(super) fn listed_closest<L: Lanes8>(
+fn listed_closest<L: Lanes8>(
     l: L,
     listed: &[TriangleOctet],
     q: &RayQuery,
@@ -113,10 +113,24 @@ pub(super) fn listed_closest<L: Lanes8>(
     best
 }
 
+/// `listed_closest` in the widest lanes the processor has.
+pub(super) fn listed_closest_here(
+    listed: &[TriangleOctet],
+    q: &RayQuery,
+    t_max: f32,
+) -> Option<ShapeHit> {
+    #[cfg(target_arch = "x86_64")]
+    if let Some(avx) = crate::isa::avx2_lanes() {
+        // SAFETY: an `Avx` exists only where the processor has AVX2.
+        return unsafe { listed_closest_avx2(avx, listed, q, t_max) };
+    }
+    listed_closest(crate::simd::Halves, listed, q, t_max)
+}
+
 /// `listed_closest` compiled for AVX2.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-pub(super) fn listed_closest_avx2(
+fn listed_closest_avx2(
     avx: Avx,
     listed: &[TriangleOctet],
     q: &RayQuery,

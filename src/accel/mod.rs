@@ -61,7 +61,7 @@ pub struct AccelOptions {
     pub first_hit_tiles: bool,
     /// The first-hit tiles list a placed mesh's triangles, so that a primary ray tests
     /// those rather than walking the mesh's hierarchy (mesh_listing.rs).
-    pub mesh_groups: bool,
+    pub mesh_triangles: bool,
     /// Shadow rays look up what they may meet by their direction from the light
     /// (light_buffer.rs).
     pub light_buffers: bool,
@@ -83,7 +83,7 @@ impl AccelOptions {
     pub const ALL: AccelOptions = AccelOptions {
         bvh: true,
         first_hit_tiles: true,
-        mesh_groups: true,
+        mesh_triangles: true,
         light_buffers: true,
         isolated_solids: true,
         any_hit_shadows: true,
@@ -301,7 +301,7 @@ impl Accelerator {
                     rays,
                     width,
                     height,
-                    self.options.mesh_groups,
+                    self.options.mesh_triangles,
                 )
             }),
         }
@@ -402,8 +402,8 @@ impl Accelerator {
             }
             let shape = &self.primitives[c.primitive as usize].surface;
             let found = match (shape, c.listed(listed)) {
-                (Surface::Instance(instance), Some(groups)) => {
-                    instance.nearest_listed(q, groups, t_max)
+                (Surface::Instance(instance), Some(octets)) => {
+                    instance.nearest_listed(q, octets, t_max)
                 }
                 _ => shape.intersect_after(q, 0.0, t_max),
             };

@@ -3,6 +3,7 @@
 //! primary ray through a tile can meet only what is listed there (first_hit.rs,
 //! mesh_listing.rs).
 
+use super::outline::CellRectangle;
 use crate::camera::CameraRays;
 use glam::DVec3;
 
@@ -17,9 +18,6 @@ pub(super) const MARGIN_PIXELS: f64 = 1.0;
 /// A box corner this close to the eye's plane (as a fraction of its distance from the
 /// eye) projects unstably; a box with one counts as covering the whole image.
 pub(super) const NEAR_PLANE: f64 = 1e-3;
-
-/// A rectangle of tiles, (x0, y0, x1, y1), ends included.
-pub(super) type TileRectangle = (u32, u32, u32, u32);
 
 /// How the image of `width` × `height` pixels seen from the eye maps points of the scene to
 /// pixels and tiles.
@@ -55,7 +53,7 @@ impl<'a> ImageProjection<'a> {
 
     /// The inclusive tile rectangle that the box lo..hi covers as seen from the eye, or None
     /// when no primary ray can reach it.
-    pub(super) fn box_tiles(&self, lo: DVec3, hi: DVec3) -> Option<TileRectangle> {
+    pub(super) fn box_tiles(&self, lo: DVec3, hi: DVec3) -> Option<CellRectangle> {
         let corners = (0..8).map(|i| {
             DVec3::new(
                 if i & 1 == 0 { lo.x } else { hi.x },
@@ -96,7 +94,7 @@ impl<'a> ImageProjection<'a> {
         &self,
         (x_min, y_min): (f64, f64),
         (x_max, y_max): (f64, f64),
-    ) -> Option<TileRectangle> {
+    ) -> Option<CellRectangle> {
         let tiles_x = self.width.div_ceil(TILE);
         let tiles_y = self.height.div_ceil(TILE);
         // Pixel p holds subsample positions in [p, p + 1).
