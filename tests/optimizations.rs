@@ -185,6 +185,39 @@ fn meshes_listed_by_tile_draw_what_their_hierarchies_draw() {
 }
 
 #[test]
+fn meshes_listed_around_a_light_draw_what_their_hierarchies_draw() {
+    // With every surface opaque, a shadow ray toward the point light tests the triangles
+    // that the light's cell lists for each bunny (shadow_listing.rs), not the bunny's
+    // hierarchy: the image, with its self-shadowed smooth, faceted and turned bunnies, must
+    // be what the walk draws, and what the BVH alone draws.
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/bunny.toml");
+    let mut scene = prism::scene_file::load_scene(&path).unwrap();
+    for object in &mut scene.objects {
+        object.material.transparency = 0.0;
+    }
+    let listed = prepared(&scene, |_| {});
+    assert!(!listed.appearance.shadow_filters().any_transmission());
+    let census = listed.geometry.accel().light_buffer(0).unwrap().census();
+    assert_eq!(census.listed_meshes, 3, "{census:?}");
+    let walked = prepared(&scene, |o| o.light_triangles = false);
+    assert_eq!(
+        walked
+            .geometry
+            .accel()
+            .light_buffer(0)
+            .unwrap()
+            .census()
+            .listed_meshes,
+        0
+    );
+    let unbuffered = prepared(&scene, |o| o.light_buffers = false);
+    let s = RenderSettings::new(400, 300, 2);
+    let reference = image(listed, scene.camera, s);
+    assert_eq!(reference, image(walked, scene.camera, s));
+    assert_eq!(reference, image(unbuffered, scene.camera, s));
+}
+
+#[test]
 fn light_buffers_draw_the_image_the_bvh_draws() {
     // Shadow rays that look up what they may meet by their direction from the light
     // (light_buffer.rs) must see what a traversal of the BVH sees: for the seed's light;
@@ -330,6 +363,9 @@ fn soft_shadows_draw_the_same_image_with_every_shortcut_off() {
         ("the light buffers", |o| o.light_buffers = false),
         ("the first-hit tiles", |o| o.first_hit_tiles = false),
         ("the meshes' listed triangles", |o| o.mesh_triangles = false),
+        ("the meshes' triangles listed around lights", |o| {
+            o.light_triangles = false
+        }),
         ("the BVH", |o| o.bvh = false),
     ] {
         let without = image(prepared(&scene, off), scene.camera, s);

@@ -18,7 +18,8 @@ use super::instance::Instance;
 use super::mesh_listing::MeshListing;
 use super::outline::{CellRectangle, mesh_coverage};
 use super::primitive::{Primitive, Surface};
-use super::tile_projection::{ImageProjection, ProjectedTriangle, TILE, lower_bound_distance};
+use super::projected_triangle::ProjectedTriangle;
+use super::tile_projection::{ImageProjection, TILE, lower_bound_distance, tile_area};
 use crate::camera::CameraRays;
 use crate::geometry::{Aabb, Shape, TriangleOctet};
 
@@ -303,7 +304,7 @@ impl Outline {
     /// Whether the surface may cover tile (tx, ty), one of its box's rectangle.
     fn may_cover_tile(&self, tx: u32, ty: u32) -> bool {
         match self {
-            Outline::Triangle(triangle) => triangle.may_cover_tile(tx, ty),
+            Outline::Triangle(triangle) => triangle.may_cover(tile_area(tx, ty)),
             Outline::Tiles {
                 x0,
                 y0,

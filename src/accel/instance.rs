@@ -5,7 +5,7 @@
 
 use super::bvh::{Bvh, LeafCost};
 use super::bvh_build::BinaryBvh;
-use super::mesh_search::{listed_closest_here, mesh_closest, mesh_occludes};
+use super::mesh_search::{listed_any_here, listed_closest_here, mesh_closest, mesh_occludes};
 #[cfg(target_arch = "x86_64")]
 use super::mesh_search::{mesh_closest_avx2, mesh_occludes_avx2};
 use crate::geometry::{
@@ -147,6 +147,25 @@ impl Model {
             }) if b.contains(&0.0) => self.intersect_after(q, 0.0, t_max),
             found => found,
         }
+    }
+
+    /// Whether any of the triangles `listed` (a light cell's octets of this mesh's
+    /// triangles, nearest to the light first) lies on the segment (0, t_max), for a shadow
+    /// ray from a point at a squared distance `distance_sq` from the light: what `occludes`
+    /// finds.
+    #[inline(never)]
+    fn occludes_listed(
+        &self,
+        q: &RayQuery,
+        listed: &[TriangleOctet],
+        t_max: f32,
+        distance_sq: f32,
+    ) -> bool {
+        debug_assert!(
+            matches!(self, Model::Mesh { .. }),
+            "only a mesh lists triangles"
+        );
+        listed_any_here(listed, q, t_max, distance_sq)
     }
 
     #[inline(never)]
@@ -306,6 +325,23 @@ impl Instance {
             return self.model.occludes(q, t_max);
         }
         self.model.occludes(&self.local(q), t_max)
+    }
+
+    /// Whether any of its model's triangles `listed` lies on the segment (0, t_max), for a
+    /// shadow ray from a point at a squared distance `distance_sq` from the light.
+    #[inline]
+    pub fn occludes_listed(
+        &self,
+        q: &RayQuery,
+        listed: &[TriangleOctet],
+        t_max: f32,
+        distance_sq: f32,
+    ) -> bool {
+        if self.identity {
+            return self.model.occludes_listed(q, listed, t_max, distance_sq);
+        }
+        self.model
+            .occludes_listed(&self.local(q), listed, t_max, distance_sq)
     }
 
     /// How many times the segment (0, t_max) crosses its surface.

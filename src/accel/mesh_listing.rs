@@ -8,7 +8,8 @@
 
 use super::instance::{Instance, Model};
 use super::outline::CellRectangle;
-use super::tile_projection::{ImageProjection, ProjectedTriangle, lower_bound_distance};
+use super::projected_triangle::ProjectedTriangle;
+use super::tile_projection::{ImageProjection, lower_bound_distance, tile_area};
 use crate::geometry::{GROUP_WIDTH, TriangleGroup, TriangleOctet};
 use glam::{DAffine3, DVec3, Vec3, Vec3A};
 
@@ -99,7 +100,7 @@ impl<'m> MeshListing<'m> {
             let (listed, outline, (a0, b0, a1, b1)) = &reached[i as usize];
             for ty in (*b0).max(y0)..=(*b1).min(y1) {
                 for tx in (*a0).max(x0)..=(*a1).min(x1) {
-                    if outline.is_none_or(|o| o.may_cover_tile(tx, ty)) {
+                    if outline.is_none_or(|o| o.may_cover(tile_area(tx, ty))) {
                         tiles[((ty - y0) * columns + (tx - x0)) as usize].push(*listed);
                     }
                 }

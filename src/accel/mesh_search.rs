@@ -1,6 +1,7 @@
 //! A mesh's triangles searched for a ray: by walking its hierarchy (the nearest hit, or
 //! any hit on a segment), or, for a primary ray, among the triangles a first-hit tile lists
-//! (mesh_listing.rs). A leaf's groups are tested two at a time in eight lanes
+//! (mesh_listing.rs); for a shadow ray, among the triangles a light's cell lists
+//! (shadow_listing.rs). A leaf's groups are tested two at a time in eight lanes
 //! (`GroupPair`), a tile's triangles eight at a time (`TriangleOctet`), compiled for AVX2
 //! where the processor has it.
 
@@ -102,7 +103,7 @@ fn listed_closest<L: Lanes8>(
     let ray = LaneRay::in_lanes(l, q);
     let mut best = None;
     for octet in listed {
-        if octet.min_t >= t_max {
+        if octet.nearest >= t_max {
             break; // this octet and every later one start beyond the nearest hit
         }
         if let Some(((triangle, group), hit)) = octet.closest(l, q, &ray, 0.0, t_max) {
@@ -137,6 +138,54 @@ fn listed_closest_avx2(
     t_max: f32,
 ) -> Option<ShapeHit> {
     listed_closest(avx, listed, q, t_max)
+}
+
+/// Whether any triangle of `listed` (a light cell's octets, nearest to the light first)
+/// lies on the segment (0, t_max) of `q`, a shadow ray whose shading point lies at a
+/// squared distance `distance_sq` from the light, tested eight at a time in the lanes of
+/// `l`.
+#[inline(always)]
+fn listed_any<L: Lanes8>(
+    l: L,
+    listed: &[TriangleOctet],
+    q: &RayQuery,
+    t_max: f32,
+    distance_sq: f32,
+) -> bool {
+    let ray = LaneRay::in_lanes(l, q);
+    listed
+        .iter()
+        // This octet and every later one start beyond the shading point.
+        .take_while(|octet| octet.nearest < distance_sq)
+        .any(|octet| octet.any(l, q, &ray, 0.0, t_max))
+}
+
+/// `listed_any` in the widest lanes the processor has.
+pub(super) fn listed_any_here(
+    listed: &[TriangleOctet],
+    q: &RayQuery,
+    t_max: f32,
+    distance_sq: f32,
+) -> bool {
+    #[cfg(target_arch = "x86_64")]
+    if let Some(avx) = crate::isa::avx2_lanes() {
+        // SAFETY: an `Avx` exists only where the processor has AVX2.
+        return unsafe { listed_any_avx2(avx, listed, q, t_max, distance_sq) };
+    }
+    listed_any(crate::simd::Halves, listed, q, t_max, distance_sq)
+}
+
+/// `listed_any` compiled for AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn listed_any_avx2(
+    avx: Avx,
+    listed: &[TriangleOctet],
+    q: &RayQuery,
+    t_max: f32,
+    distance_sq: f32,
+) -> bool {
+    listed_any(avx, listed, q, t_max, distance_sq)
 }
 
 /// `mesh_closest` compiled for AVX2.

@@ -11,7 +11,8 @@
 //! ```text
 //! primitives ──build──▶ BVH (bvh.rs, bvh_build.rs)
 //!                       isolated solids (isolated.rs)
-//!                       one light buffer per light (light_buffer.rs)
+//!                       one light buffer per light (light_buffer.rs), its meshes'
+//!                         triangles listed in cells of their own (shadow_listing.rs)
 //! camera + image size ──view──▶ first-hit tiles (first_hit.rs)
 //! ```
 
@@ -25,10 +26,13 @@ mod first_hit;
 mod instance;
 mod isolated;
 mod light_buffer;
+mod light_faces;
 mod mesh_listing;
 mod mesh_search;
 mod outline;
 mod primitive;
+mod projected_triangle;
+mod shadow_listing;
 mod tile_projection;
 mod wide_node;
 
@@ -65,6 +69,10 @@ pub struct AccelOptions {
     /// Shadow rays look up what they may meet by their direction from the light
     /// (light_buffer.rs).
     pub light_buffers: bool,
+    /// The light buffers list a placed mesh's triangles by finer cells of its own, so that
+    /// a shadow ray tests those rather than walking the mesh's hierarchy
+    /// (shadow_listing.rs).
+    pub light_triangles: bool,
     /// A ray inside an isolated solid tests only that solid (isolated.rs).
     pub isolated_solids: bool,
     /// In a scene where no surface transmits light, a shadow ray stops at the first
@@ -85,6 +93,7 @@ impl AccelOptions {
         first_hit_tiles: true,
         mesh_triangles: true,
         light_buffers: true,
+        light_triangles: true,
         isolated_solids: true,
         any_hit_shadows: true,
     };
@@ -175,7 +184,11 @@ impl Accelerator {
         let light_buffers = if options.light_buffers {
             lights
                 .iter()
-                .map(|light| light.map(|position| LightBuffer::new(position, &primitives)))
+                .map(|light| {
+                    light.map(|position| {
+                        LightBuffer::new(position, &primitives, options.light_triangles)
+                    })
+                })
                 .collect()
         } else {
             Vec::new()
@@ -465,7 +478,7 @@ impl Accelerator {
         // The shadow ray ends exactly at the light: t = 1 on (light − origin).
         let shadow = |to_light| RayQuery::new(Ray::new(origin, to_light));
         if let Some(Some(buffer)) = self.light_buffers.get(light)
-            && let Some(listed) = buffer.at((-to_light).into())
+            && let Some((listed, seen)) = buffer.look_up((-to_light).into())
         {
             debug_assert_eq!(
                 buffer.position(),
@@ -493,6 +506,12 @@ impl Accelerator {
                     break;
                 }
                 if Some(o.object) == leaving {
+                    continue;
+                }
+                if opaque && let Some((mesh, triangles)) = buffer.triangles(o, seen) {
+                    if mesh.occludes_listed(&q, triangles, 1.0, distance_sq) {
+                        return Vec3A::ZERO;
+                    }
                     continue;
                 }
                 if !self.pass_through(o.primitive, &q, 1.0, opaque, filters, &mut light) {

@@ -4,6 +4,7 @@
 //! mesh_listing.rs).
 
 use super::outline::CellRectangle;
+use super::projected_triangle::ProjectedTriangle;
 use crate::camera::CameraRays;
 use glam::DVec3;
 
@@ -127,57 +128,13 @@ impl<'a> ImageProjection<'a> {
     }
 }
 
-/// A triangle's outline on the image, in pixels, as three edge functions that are ≥ 0
-/// inside it.
-#[derive(Clone, Copy, Debug)]
-pub(super) struct ProjectedTriangle {
-    /// Edge i: (a, b, c) with a·x + b·y + c ≥ 0 on the triangle's side of the edge.
-    edges: [(f64, f64, f64); 3],
-}
-
-impl ProjectedTriangle {
-    /// The outline of the triangle whose corners fall on the image at `corners` (pixels),
-    /// or None when it is seen edge-on, or nearly: the edge functions' signs would then
-    /// mean nothing. Like the boxes, it is widened by `MARGIN_PIXELS`, far beyond the
-    /// rounding of a camera ray or of the triangle test.
-    pub(super) fn new(corners: [(f64, f64); 3]) -> Option<Self> {
-        let [(ax, ay), (bx, by), (cx, cy)] = corners;
-        let area = (bx - ax) * (cy - ay) - (by - ay) * (cx - ax);
-        let extent = [bx - ax, cx - ax, by - ay, cy - ay]
-            .iter()
-            .fold(0.0f64, |m, d| m.max(d.abs()));
-        if area.is_nan() || area.abs() <= 1e-9 * extent * extent {
-            return None;
-        }
-        let sign = area.signum();
-        let edge = |(px, py): (f64, f64), (qx, qy): (f64, f64)| {
-            // (q − p) × (r − p) ≥ 0 for r on the inside (counter-clockwise when sign > 0).
-            let (a, b) = (-(qy - py) * sign, (qx - px) * sign);
-            (a, b, -(a * px + b * py))
-        };
-        Some(Self {
-            edges: [
-                edge(corners[0], corners[1]),
-                edge(corners[1], corners[2]),
-                edge(corners[2], corners[0]),
-            ],
-        })
-    }
-
-    /// Whether any point of tile (tx, ty), widened by `MARGIN_PIXELS`, may lie inside: false
-    /// only when the whole widened tile lies outside one edge.
-    pub(super) fn may_cover_tile(&self, tx: u32, ty: u32) -> bool {
-        let x0 = (tx * TILE) as f64 - MARGIN_PIXELS;
-        let y0 = (ty * TILE) as f64 - MARGIN_PIXELS;
-        let side = TILE as f64 + 2.0 * MARGIN_PIXELS;
-        let (x1, y1) = (x0 + side, y0 + side);
-        self.edges.iter().all(|&(a, b, c)| {
-            // The corner farthest along the edge's inward normal.
-            let x = if a > 0.0 { x1 } else { x0 };
-            let y = if b > 0.0 { y1 } else { y0 };
-            a * x + b * y + c >= 0.0
-        })
-    }
+/// Tile (tx, ty) in pixels, widened by `MARGIN_PIXELS` (far beyond the rounding of a camera
+/// ray or of the triangle test), as the x and y ranges an outline may cover.
+pub(super) fn tile_area(tx: u32, ty: u32) -> [(f64, f64); 2] {
+    let x0 = (tx * TILE) as f64 - MARGIN_PIXELS;
+    let y0 = (ty * TILE) as f64 - MARGIN_PIXELS;
+    let side = TILE as f64 + 2.0 * MARGIN_PIXELS;
+    [(x0, x0 + side), (y0, y0 + side)]
 }
 
 /// The distance from `eye` to the box lo..hi, rounded down so that no computed hit

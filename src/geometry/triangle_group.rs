@@ -422,7 +422,8 @@ impl GroupPair<'_> {
     }
 }
 
-/// Up to eight triangles of a mesh, any of them (a first-hit tile's, nearest first), corner
+/// Up to eight triangles of a mesh, any of them (a first-hit tile's or a light cell's, in
+/// the order of their lists), corner
 /// by corner and axis by axis in eight lanes, tested at once by the same lane test as a
 /// group: the octet finds bit for bit what testing its triangles one by one in lane order
 /// finds. Unused lanes repeat the last triangle and are masked off.
@@ -435,8 +436,10 @@ pub struct TriangleOctet {
     triangles: [(u32, u32); 8],
     /// The lanes in use, 1..=8.
     count: u32,
-    /// No hit on its triangles lies nearer than this.
-    pub min_t: f32,
+    /// The key its list is sorted by, no greater than any of its triangles' (in a first-hit
+    /// tile, the least distance from the eye to a hit; in a light's cell, the least squared
+    /// distance from the light).
+    pub nearest: f32,
 }
 
 /// A corner of an octet's triangles (`corner[a]`: its coordinate on axis a) in eight lanes,
@@ -452,8 +455,8 @@ fn loaded<L: Lanes8>(l: L, corner: &[[f32; 8]; 3], axes: Axes) -> [L::V; 3] {
 
 impl TriangleOctet {
     /// The octet of the triangles (index, group) `triangles` whose corners are `corners`
-    /// (one to eight), none of whose hits lies nearer than `min_t`.
-    pub fn new(triangles: &[(u32, u32)], corners: &[[Vec3A; 3]], min_t: f32) -> Self {
+    /// (one to eight), whose list key is `nearest`.
+    pub fn new(triangles: &[(u32, u32)], corners: &[[Vec3A; 3]], nearest: f32) -> Self {
         assert!((1..=8).contains(&corners.len()) && triangles.len() == corners.len());
         let lane = |i: usize| i.min(corners.len() - 1);
         Self {
@@ -462,7 +465,7 @@ impl TriangleOctet {
             }),
             triangles: std::array::from_fn(|i| triangles[lane(i)]),
             count: corners.len() as u32,
-            min_t,
+            nearest,
         }
     }
 
@@ -472,6 +475,25 @@ impl TriangleOctet {
             let c = &self.corners[k];
             Vec3A::new(c[0][i], c[1][i], c[2][i])
         })
+    }
+
+    /// The lanes' watertight tests, with t in (t_min, t_max).
+    #[inline(always)]
+    fn lanes<L: Lanes8>(
+        &self,
+        l: L,
+        ray: &LaneRay<L>,
+        t_min: f32,
+        t_max: f32,
+    ) -> LaneHits<[f32; 8]> {
+        let c = &self.corners;
+        let corners = [
+            loaded(l, &c[0], ray.axes),
+            loaded(l, &c[1], ray.axes),
+            loaded(l, &c[2], ray.axes),
+        ];
+        let live = (1u32 << self.count) - 1;
+        lane_hits(l, &corners, live, ray, t_min, t_max)
     }
 
     /// The nearest hit with t in (t_min, t_max), and whose it is (triangle, group): what
@@ -486,14 +508,7 @@ impl TriangleOctet {
         t_min: f32,
         mut t_max: f32,
     ) -> Option<((u32, u32), TriangleHit)> {
-        let c = &self.corners;
-        let corners = [
-            loaded(l, &c[0], ray.axes),
-            loaded(l, &c[1], ray.axes),
-            loaded(l, &c[2], ray.axes),
-        ];
-        let live = (1u32 << self.count) - 1;
-        let hits = lane_hits(l, &corners, live, ray, t_min, t_max);
+        let hits = self.lanes(l, ray, t_min, t_max);
         if hits.mask == NEEDS_SCALAR {
             let mut best = None;
             for i in 0..self.count as usize {
@@ -506,6 +521,24 @@ impl TriangleOctet {
         }
         let (i, hit) = hits.nearest(t_max)?;
         Some((self.triangles[i], hit))
+    }
+
+    /// Whether the segment (t_min, t_max) crosses any of its triangles.
+    #[inline(always)]
+    pub fn any<L: Lanes8>(
+        &self,
+        l: L,
+        q: &RayQuery,
+        ray: &LaneRay<L>,
+        t_min: f32,
+        t_max: f32,
+    ) -> bool {
+        let hits = self.lanes(l, ray, t_min, t_max);
+        if hits.mask == NEEDS_SCALAR {
+            return (0..self.count as usize)
+                .any(|i| watertight(&self.lane_corners(i), q, t_min, t_max).is_some());
+        }
+        hits.mask != 0
     }
 }
 

@@ -1,0 +1,332 @@
+//! A placed mesh's triangles listed by the cells of the cube around a point light: for each
+//! cell, the triangles that a shadow ray whose direction falls in it may meet, nearest to
+//! the light first, eight to an octet. A shadow ray then tests those octets instead of
+//! walking the mesh's hierarchy, and stops at the first octet that starts beyond its
+//! shading point. Whether a shadow ray meets the mesh does not depend on the order of the
+//! tests, and the list holds every triangle it can meet, so the answer is the walk's.
+//!
+//! The mesh has its own grid on each face, fitted around its triangles and finer than the
+//! light buffer's, so that a cell holds a few of them (light_buffer.rs lists the mesh as a
+//! whole).
+
+use super::instance::{Instance, Model};
+use super::light_faces::{CROWDED, FACES, FaceView, Seen, Window, lower_bound_distance_sq};
+use crate::geometry::{GROUP_WIDTH, TriangleOctet};
+use glam::{DAffine3, DVec3, Vec3, Vec3A};
+use std::sync::Arc;
+
+/// Triangles per octet.
+const OCTET: usize = 8;
+
+/// A cell whose triangles fill more than this many octets is left to the mesh's hierarchy.
+const MAX_OCTETS: usize = 4;
+
+/// A face's grid has about this many cells for each triangle seen through it.
+const CELLS_PER_TRIANGLE: f64 = 1.0;
+
+/// The most cells along a side of a face's grid.
+const MAX_SIDE: u32 = 512;
+
+/// Each triangle may be listed in this many cells on average; a mesh that needs more (a
+/// crowd of triangles around the light, or long thin ones across many cells) is left to its
+/// hierarchy, so the lists' memory stays in proportion to the mesh's.
+const LISTINGS_PER_TRIANGLE: usize = 16;
+
+/// A mesh with more triangles than this is left to its hierarchy: its lists take some 400
+/// bytes per triangle for each light, out of proportion to the mesh's own.
+const MAX_TRIANGLES: usize = 1 << 16;
+
+/// A triangle listed in a cell: its sort key (`FaceView::key_within`), group and index.
+type Listed = (f32, u32, u32);
+
+/// A placed mesh's triangles listed by the cells of the cube around one light.
+#[derive(Clone, Debug)]
+pub(super) struct MeshShadowListing {
+    /// The placed mesh.
+    instance: Arc<Instance>,
+    /// Where each face's grid lies.
+    windows: [Window; FACES],
+    /// Where each face's cells start in `cells`.
+    face_start: [u32; FACES],
+    /// Each cell's octets, as a range of `octets`, row by row; `CROWDED` for a cell whose
+    /// triangles fill more than `MAX_OCTETS`.
+    cells: Vec<(u32, u32)>,
+    octets: Vec<TriangleOctet>,
+}
+
+impl MeshShadowListing {
+    /// The triangles of the mesh placed by `instance` listed around a light at `light`,
+    /// no shading point farther from it than `farthest`; None for a shape, or for a mesh
+    /// too large or too crowded to list.
+    pub(super) fn new(instance: &Arc<Instance>, light: DVec3, farthest: f64) -> Option<Self> {
+        let Model::Mesh { mesh, groups, .. } = &**instance.model() else {
+            return None;
+        };
+        if mesh.triangle_count() > MAX_TRIANGLES {
+            return None;
+        }
+        let transform = instance.transform();
+        let to_scene = transform.to_scene();
+        let to_scene = DAffine3::from_cols_array(&to_scene.to_cols_array().map(f64::from));
+        // A triangle is hit in the model's space by the shadow ray taken there, which strays
+        // from the scene's ray by the rounding of the map: each box is widened by the bound
+        // on that rounding anywhere in the model's box.
+        let pad = instance
+            .model()
+            .bounds()
+            .corners()
+            .into_iter()
+            .map(|p| transform.point_to_scene(p.into(), Vec3A::ZERO).1)
+            .fold(Vec3A::ZERO, Vec3A::max);
+        let pad = Vec3::from(pad).as_dvec3();
+        let pad_most = pad.max_element();
+
+        // Each triangle's box in the scene's space, with its group and index.
+        let mut boxes = Vec::with_capacity(mesh.triangle_count());
+        for (index, group) in groups.iter().enumerate() {
+            for triangle in group.triangles() {
+                let corners = group
+                    .corners_of(triangle)
+                    .map(|c| to_scene.transform_point3(Vec3::from(c).as_dvec3()));
+                let lo = corners[0].min(corners[1]).min(corners[2]) - pad;
+                let hi = corners[0].max(corners[1]).max(corners[2]) + pad;
+                boxes.push((lo, hi, corners, index as u32, triangle));
+            }
+        }
+        debug_assert!(boxes.len() <= groups.len() * GROUP_WIDTH);
+
+        let view = |&(lo, hi, ..): &(DVec3, DVec3, [DVec3; 3], u32, u32), face| {
+            FaceView::new(lo, hi, light, face, farthest)
+        };
+        // Each face's grid, fitted around the triangles seen through it, with about
+        // `CELLS_PER_TRIANGLE` cells for each.
+        let windows: [Window; FACES] = std::array::from_fn(|face| {
+            let seen = boxes.iter().filter_map(|b| Some(view(b, face)?.tangents));
+            Window::around(seen, |count| {
+                ((count as f64 * CELLS_PER_TRIANGLE).sqrt().ceil() as u32).clamp(1, MAX_SIDE)
+            })
+        });
+        let mut face_start = [0; FACES];
+        let mut cell_count = 0;
+        for (face, window) in windows.iter().enumerate() {
+            face_start[face] = cell_count;
+            cell_count += window.side() * window.side();
+        }
+
+        let budget = LISTINGS_PER_TRIANGLE * boxes.len();
+        let mut listed = 0;
+        let mut per_cell: Vec<Vec<Listed>> = vec![Vec::new(); cell_count as usize];
+        for b @ &(lo, hi, corners, group, triangle) in &boxes {
+            let box_distance_sq = lower_bound_distance_sq(light, lo, hi);
+            for (face, window) in windows.iter().enumerate() {
+                let Some(view) = view(b, face) else { continue };
+                let (u0, v0, u1, v1) = view.cells(window);
+                let outline = view.outline(&corners, light, face, pad_most);
+                for v in v0..=v1 {
+                    for u in u0..=u1 {
+                        if outline.as_ref().is_some_and(|o| !o.may_cover(window, u, v)) {
+                            continue;
+                        }
+                        listed += 1;
+                        if listed > budget {
+                            return None;
+                        }
+                        let key = view.key_within(window, u, v, box_distance_sq);
+                        let cell = face_start[face] + v * window.side() + u;
+                        per_cell[cell as usize].push((key, group, triangle));
+                    }
+                }
+            }
+        }
+
+        let mut cells = Vec::with_capacity(per_cell.len());
+        let mut octets = Vec::new();
+        for mut list in per_cell {
+            if list.len() > MAX_OCTETS * OCTET {
+                cells.push(CROWDED);
+                continue;
+            }
+            // Stable, so equal keys keep the mesh's order.
+            list.sort_by(|a, b| a.0.total_cmp(&b.0));
+            let start = octets.len() as u32;
+            for chunk in list.chunks(OCTET) {
+                let ids: Vec<(u32, u32)> = chunk.iter().map(|&(_, g, t)| (t, g)).collect();
+                let corners: Vec<[Vec3A; 3]> = chunk
+                    .iter()
+                    .map(|&(_, g, t)| groups[g as usize].corners_of(t))
+                    .collect();
+                octets.push(TriangleOctet::new(&ids, &corners, chunk[0].0));
+            }
+            cells.push((start, octets.len() as u32));
+        }
+        Some(Self {
+            instance: instance.clone(),
+            windows,
+            face_start,
+            cells,
+            octets,
+        })
+    }
+
+    /// The placed mesh, and the octets of its triangles that a shadow ray seen as `seen`
+    /// may meet, nearest to the light first (`TriangleOctet::nearest`: a squared distance
+    /// from the light); None where too many are, and the mesh's hierarchy must be walked.
+    #[inline(always)]
+    pub(super) fn at(&self, seen: Seen) -> Option<(&Instance, &[TriangleOctet])> {
+        let window = &self.windows[seen.face];
+        let Some((u, v)) = window.cell_of(seen.tangents) else {
+            // Outside the window: no triangle is seen this way.
+            return Some((&self.instance, &[]));
+        };
+        let cell = self.face_start[seen.face] + v * window.side() + u;
+        let (start, end) = self.cells[cell as usize];
+        // A crowded cell's range is empty-backwards, which `get` refuses.
+        Some((
+            &self.instance,
+            self.octets.get(start as usize..end as usize)?,
+        ))
+    }
+
+    /// How many cells there are, how many are left to the hierarchy, and how many octets
+    /// the others hold (for tests and the bench).
+    pub(super) fn census(&self) -> (usize, usize, usize) {
+        let crowded = self.cells.iter().filter(|&&c| c == CROWDED).count();
+        (self.cells.len(), crowded, self.octets.len())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::accel::{AccelOptions, Reach, Toward};
+    use crate::geometry::{Ray, RayQuery};
+    use crate::numerics::offset_ray_origin;
+    use crate::scene::PreparedScene;
+    use crate::xorshift::XorShift32;
+    use glam::{Vec3, Vec3A};
+
+    /// Shadow rays toward five lights (the scene's, one among the bunnies, one far off, one
+    /// just above a bunny's back and one inside a bunny's box) from points all over the three placed bunnies of
+    /// assets/scenes/bunny.toml (turned and scaled), made opaque so that shadow rays stop at
+    /// the first hit: from their surfaces (as the integrator leaves them), and from anywhere
+    /// in and around their boxes. Each reaches its light exactly as far with the meshes'
+    /// triangles listed as when their hierarchies are walked, and as without light buffers.
+    #[test]
+    fn shadow_rays_through_listed_triangles_find_what_the_walk_finds() {
+        let mut scene = crate::accel::tests::bunny_scene();
+        for object in &mut scene.objects {
+            object.material.transparency = 0.0;
+        }
+        let light = scene.lights[0];
+        scene.lights = [
+            Vec3::ZERO,
+            Vec3::new(-9.0, -48.0, -68.0),
+            Vec3::new(-600.0, 50.0, 300.0),
+            Vec3::new(-18.0, -29.0, -70.0),
+        ]
+        .map(|offset| light.moved_by(offset))
+        .to_vec();
+        // And a fifth inside a bunny's box: its triangles straddle the cube's planes.
+        let inside = PreparedScene::new(&scene)
+            .geometry
+            .accel()
+            .primitives()
+            .iter()
+            .find(|p| matches!(p.surface, crate::accel::Surface::Instance(_)))
+            .unwrap()
+            .surface
+            .bounds()
+            .centroid();
+        scene
+            .lights
+            .push(light.moved_by(inside - light.position().unwrap()));
+        let positions: Vec<Vec3A> = scene
+            .lights
+            .iter()
+            .map(|l| l.position().unwrap().into())
+            .collect();
+        let prepare = |options| PreparedScene::with_options(&scene, options);
+        let listed = prepare(AccelOptions::ALL);
+        let walked = prepare(AccelOptions {
+            light_triangles: false,
+            ..AccelOptions::ALL
+        });
+        let unbuffered = prepare(AccelOptions {
+            light_buffers: false,
+            ..AccelOptions::ALL
+        });
+        let filters = listed.appearance.shadow_filters();
+        let accel = listed.geometry.accel();
+        for light in 0..4 {
+            let census = accel.light_buffer(light).unwrap().census();
+            assert_eq!(census.listed_meshes, 3, "light {light}: {census:?}");
+            assert!(census.mesh_octets > 1000, "light {light}: {census:?}");
+        }
+
+        // The bunnies' box (without the floor), a little widened.
+        let bunnies = (0..accel.primitives().len() as u32)
+            .map(|i| accel.primitive(i))
+            .filter(|p| matches!(p.surface, crate::accel::Surface::Instance(_)))
+            .fold(crate::geometry::Aabb::EMPTY, |b, p| {
+                b.union(p.surface.bounds())
+            });
+        let (lo, hi) = (Vec3A::from(bunnies.min), Vec3A::from(bunnies.max));
+        let mut rng = XorShift32::new(5);
+        let mut point = |widen: f32| {
+            let f = Vec3A::new(rng.next_f32(), rng.next_f32(), rng.next_f32());
+            lo + (hi - lo) * (f * (1.0 + 2.0 * widen) - widen)
+        };
+        let (mut on_surface, mut blocked, mut lit) = (0, 0, 0);
+        for _ in 0..20_000 {
+            // A ray between two points about the bunnies: its first hit, if any, is a
+            // shading point; the ray's own origin is another.
+            let (from, to) = (point(0.2), point(0.0));
+            let q = RayQuery::new(Ray::new(from, to - from));
+            let mut origins = vec![(from, None)];
+            if let Some(hit) = accel.nearest_hit(&q, Reach::After(0.0)) {
+                let surface = accel.surface(&q, &hit);
+                origins.push((surface.point, Some(surface)));
+            }
+            for (light, &position) in positions.iter().enumerate() {
+                for &(origin, at) in &origins {
+                    // Off the surface on the light's side, as the integrator leaves it.
+                    let origin = match at {
+                        Some(surface) => {
+                            on_surface += 1;
+                            let l = position - origin;
+                            let n = surface.normal;
+                            let n = if n.dot(l) < 0.0 { -n } else { n };
+                            offset_ray_origin(origin, surface.error, n, l)
+                        }
+                        None => origin,
+                    };
+                    let reaching = |prepared: &PreparedScene| {
+                        prepared.geometry.accel().light_reaching(
+                            light,
+                            Toward::Point(position),
+                            origin,
+                            None,
+                            filters,
+                        )
+                    };
+                    let found = reaching(&listed);
+                    assert_eq!(found, reaching(&walked), "{origin} toward light {light}");
+                    assert_eq!(
+                        found,
+                        reaching(&unbuffered),
+                        "{origin} toward light {light}"
+                    );
+                    if found == Vec3A::ZERO {
+                        blocked += 1;
+                    } else {
+                        lit += 1;
+                    }
+                }
+            }
+        }
+        assert!(on_surface > 10_000, "{on_surface}");
+        assert!(
+            blocked > 10_000 && lit > 10_000,
+            "{blocked} blocked, {lit} lit"
+        );
+    }
+}
