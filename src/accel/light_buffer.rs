@@ -13,14 +13,15 @@
 //! listed in finer cells of its own (shadow_listing.rs), so that a shadow ray that reaches
 //! it need not walk its hierarchy either.
 
-use super::instance::Instance;
+use super::instance::{Instance, Model};
 use super::light_faces::{
     CROWDED, FACES, FaceView, Seen, Window, farthest, lower_bound_distance_sq,
 };
 use super::primitive::{Primitive, Surface};
-use super::shadow_listing::MeshShadowListing;
+use super::shadow_listing::{MAX_LISTED_TRIANGLES, MeshShadowListing};
 use crate::geometry::TriangleOctet;
 use glam::{DVec3, Vec3};
+use std::sync::Arc;
 
 /// Cells along each side of a cube face.
 pub const FACE_CELLS: u32 = 64;
@@ -115,19 +116,15 @@ impl LightBuffer {
             };
         }
 
+        let (meshes, listing_of) = if mesh_triangles {
+            list_meshes(primitives, light, farthest)
+        } else {
+            (Vec::new(), vec![UNLISTED; primitives.len()])
+        };
         let mut per_cell: Vec<Vec<Occluder>> = vec![Vec::new(); cell_count];
-        let mut meshes = Vec::new();
         for (index, ((lo, hi), faces)) in boxes.iter().zip(&views).enumerate() {
             let box_distance_sq = lower_bound_distance_sq(light, *lo, *hi);
-            let triangles = match &primitives[index].surface {
-                Surface::Instance(instance) if mesh_triangles => {
-                    MeshShadowListing::new(instance, light, farthest).map_or(UNLISTED, |listing| {
-                        meshes.push(listing);
-                        meshes.len() as u32 - 1
-                    })
-                }
-                _ => UNLISTED,
-            };
+            let triangles = listing_of[index];
             for (face, view) in faces.iter().enumerate() {
                 let Some(view) = view else { continue };
                 let window = &windows[face];
@@ -225,6 +222,50 @@ impl LightBuffer {
         }
         census
     }
+}
+
+/// The placed meshes of `primitives` listed triangle by triangle around a light at `light`
+/// (no shading point farther from it than `farthest`), built in parallel, and each
+/// primitive's index among them (`UNLISTED` for the others). Meshes are taken in the
+/// primitives' order while their triangles, counted once per instance, fit in
+/// `MAX_LISTED_TRIANGLES`: every instance of a mesh has lists of its own.
+fn list_meshes(
+    primitives: &[Primitive],
+    light: DVec3,
+    farthest: f64,
+) -> (Vec<MeshShadowListing>, Vec<u32>) {
+    use rayon::prelude::*;
+    let mut left = MAX_LISTED_TRIANGLES;
+    let chosen: Vec<(usize, &Arc<Instance>)> = primitives
+        .iter()
+        .enumerate()
+        .filter_map(|(index, primitive)| {
+            let Surface::Instance(instance) = &primitive.surface else {
+                return None;
+            };
+            let Model::Mesh { mesh, .. } = &**instance.model() else {
+                return None;
+            };
+            let count = mesh.triangle_count();
+            (count <= left).then(|| {
+                left -= count;
+                (index, instance)
+            })
+        })
+        .collect();
+    let built: Vec<(usize, Option<MeshShadowListing>)> = chosen
+        .into_par_iter()
+        .map(|(index, instance)| (index, MeshShadowListing::new(instance, light, farthest)))
+        .collect();
+    let mut listing_of = vec![UNLISTED; primitives.len()];
+    let mut meshes = Vec::new();
+    for (index, listing) in built {
+        if let Some(listing) = listing {
+            listing_of[index] = meshes.len() as u32;
+            meshes.push(listing);
+        }
+    }
+    (meshes, listing_of)
 }
 
 /// How a light buffer's cells are spent (for tests and the bench).

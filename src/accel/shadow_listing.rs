@@ -32,9 +32,11 @@ const MAX_SIDE: u32 = 512;
 /// hierarchy, so the lists' memory stays in proportion to the mesh's.
 const LISTINGS_PER_TRIANGLE: usize = 16;
 
-/// A mesh with more triangles than this is left to its hierarchy: its lists take some 400
-/// bytes per triangle for each light, out of proportion to the mesh's own.
-const MAX_TRIANGLES: usize = 1 << 16;
+/// The most triangles listed around one light, over all the placed meshes (each instance
+/// of a mesh counts its triangles again): the lists take some 400 bytes per triangle, out
+/// of proportion to a mesh's own memory, and beyond the processor's caches they cost more
+/// than the walks they spare.
+pub(super) const MAX_LISTED_TRIANGLES: usize = 1 << 16;
 
 /// A triangle listed in a cell: its sort key (`FaceView::key_within`), group and index.
 type Listed = (f32, u32, u32);
@@ -57,14 +59,11 @@ pub(super) struct MeshShadowListing {
 impl MeshShadowListing {
     /// The triangles of the mesh placed by `instance` listed around a light at `light`,
     /// no shading point farther from it than `farthest`; None for a shape, or for a mesh
-    /// too large or too crowded to list.
+    /// too crowded around the light to list.
     pub(super) fn new(instance: &Arc<Instance>, light: DVec3, farthest: f64) -> Option<Self> {
         let Model::Mesh { mesh, groups, .. } = &**instance.model() else {
             return None;
         };
-        if mesh.triangle_count() > MAX_TRIANGLES {
-            return None;
-        }
         let transform = instance.transform();
         let to_scene = transform.to_scene();
         let to_scene = DAffine3::from_cols_array(&to_scene.to_cols_array().map(f64::from));
