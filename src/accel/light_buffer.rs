@@ -390,6 +390,47 @@ mod tests {
     }
 
     #[test]
+    fn the_triangles_listed_around_a_light_stay_within_one_budget() {
+        // Thirty instances of a bunny (3,674 triangles each): each has lists of its own, so
+        // only as many as fit in the budget are listed; the others keep their walks.
+        let (scene, light) = bunnies();
+        let bunny = scene
+            .primitives()
+            .iter()
+            .find(|p| match &p.surface {
+                Surface::Instance(instance) => matches!(**instance.model(), Model::Mesh { .. }),
+                _ => false,
+            })
+            .unwrap();
+        let Surface::Instance(instance) = &bunny.surface else {
+            unreachable!()
+        };
+        // In a row along x, each to its own cells of the light buffer.
+        let herd: Vec<Primitive> = (0..30)
+            .map(|i| {
+                let shift = glam::Affine3A::from_translation(Vec3::new(i as f32 * 12.0, 0.0, 0.0));
+                let transform = instance.transform().then(shift).unwrap();
+                Primitive {
+                    surface: Surface::Instance(std::sync::Arc::new(Instance::new(
+                        instance.model().clone(),
+                        transform,
+                    ))),
+                    ..bunny.clone()
+                }
+            })
+            .collect();
+        let census = LightBuffer::new(light, &herd, true).census();
+        assert_eq!(
+            census.listed_meshes,
+            MAX_LISTED_TRIANGLES / 3674,
+            "{census:?}"
+        );
+        assert!(census.mesh_octets > 1000, "{census:?}");
+        let census = LightBuffer::new(light, &herd, false).census();
+        assert_eq!((census.listed_meshes, census.mesh_octets), (0, 0));
+    }
+
+    #[test]
     fn a_far_light_spends_its_cells_on_the_scene() {
         // 25 beads in a 10 × 10 patch 1000 units from the light: a 0.01 wide patch of
         // tangents, a third of one cell of the whole face. The face's window fits round the

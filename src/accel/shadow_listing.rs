@@ -196,6 +196,7 @@ impl MeshShadowListing {
 
 #[cfg(test)]
 mod tests {
+    use super::Model;
     use crate::accel::{AccelOptions, Reach, Toward};
     use crate::geometry::{Ray, RayQuery};
     use crate::numerics::offset_ray_origin;
@@ -230,7 +231,12 @@ mod tests {
             .accel()
             .primitives()
             .iter()
-            .find(|p| matches!(p.surface, crate::accel::Surface::Instance(_)))
+            .find(|p| match &p.surface {
+                crate::accel::Surface::Instance(instance) => {
+                    matches!(**instance.model(), Model::Mesh { .. })
+                }
+                _ => false,
+            })
             .unwrap()
             .surface
             .bounds()
@@ -264,7 +270,12 @@ mod tests {
         // The bunnies' box (without the floor), a little widened.
         let bunnies = (0..accel.primitives().len() as u32)
             .map(|i| accel.primitive(i))
-            .filter(|p| matches!(p.surface, crate::accel::Surface::Instance(_)))
+            .filter(|p| match &p.surface {
+                crate::accel::Surface::Instance(instance) => {
+                    matches!(**instance.model(), Model::Mesh { .. })
+                }
+                _ => false,
+            })
             .fold(crate::geometry::Aabb::EMPTY, |b, p| {
                 b.union(p.surface.bounds())
             });
