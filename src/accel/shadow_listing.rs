@@ -10,7 +10,9 @@
 //! whole).
 
 use super::instance::{Instance, Model};
-use super::light_faces::{CROWDED, FACES, FaceView, Seen, Window, lower_bound_distance_sq};
+use super::light_faces::{
+    CROWDED, FACES, FaceOutline, FaceView, Seen, Window, lower_bound_distance_sq,
+};
 use crate::geometry::{GROUP_WIDTH, TriangleOctet};
 use glam::{DAffine3, DVec3, Vec3, Vec3A};
 use std::sync::Arc;
@@ -40,6 +42,18 @@ pub(super) const MAX_LISTED_TRIANGLES: usize = 1 << 16;
 
 /// A triangle listed in a cell: its sort key (`FaceView::key_within`), group and index.
 type Listed = (f32, u32, u32);
+
+/// A triangle as one face of the cube sees it.
+struct Sighting {
+    view: FaceView,
+    /// Its outline through the face, when known.
+    outline: Option<FaceOutline>,
+    /// The squared distance from the light to its box.
+    box_distance_sq: f64,
+    face: usize,
+    group: u32,
+    triangle: u32,
+}
 
 /// A placed mesh's triangles listed by the cells of the cube around one light.
 #[derive(Clone, Debug)]
@@ -94,14 +108,31 @@ impl MeshShadowListing {
         }
         debug_assert!(boxes.len() <= groups.len() * GROUP_WIDTH);
 
-        let view = |&(lo, hi, ..): &(DVec3, DVec3, [DVec3; 3], u32, u32), face| {
-            FaceView::new(lo, hi, light, face, farthest)
-        };
+        // How each triangle is seen through each face that sees it, once.
+        let seen: Vec<Sighting> = boxes
+            .iter()
+            .flat_map(|&(lo, hi, corners, group, triangle)| {
+                (0..FACES).filter_map(move |face| {
+                    let view = FaceView::new(lo, hi, light, face, farthest)?;
+                    Some(Sighting {
+                        outline: view.outline(&corners, light, face, pad_most),
+                        box_distance_sq: lower_bound_distance_sq(light, lo, hi),
+                        view,
+                        face,
+                        group,
+                        triangle,
+                    })
+                })
+            })
+            .collect();
         // Each face's grid, fitted around the triangles seen through it, with about
         // `CELLS_PER_TRIANGLE` cells for each.
         let windows: [Window; FACES] = std::array::from_fn(|face| {
-            let seen = boxes.iter().filter_map(|b| Some(view(b, face)?.tangents));
-            Window::around(seen, |count| {
+            let tangents = seen
+                .iter()
+                .filter(|s| s.face == face)
+                .map(|s| s.view.tangents);
+            Window::around(tangents, |count| {
                 ((count as f64 * CELLS_PER_TRIANGLE).sqrt().ceil() as u32).clamp(1, MAX_SIDE)
             })
         });
@@ -111,52 +142,80 @@ impl MeshShadowListing {
             face_start[face] = cell_count;
             cell_count += window.side() * window.side();
         }
-
-        let budget = LISTINGS_PER_TRIANGLE * boxes.len();
-        let mut listed = 0;
-        let mut per_cell: Vec<Vec<Listed>> = vec![Vec::new(); cell_count as usize];
-        for b @ &(lo, hi, corners, group, triangle) in &boxes {
-            let box_distance_sq = lower_bound_distance_sq(light, lo, hi);
-            for (face, window) in windows.iter().enumerate() {
-                let Some(view) = view(b, face) else { continue };
-                let (u0, v0, u1, v1) = view.cells(window);
-                let outline = view.outline(&corners, light, face, pad_most);
-                for v in v0..=v1 {
-                    for u in u0..=u1 {
-                        if outline.as_ref().is_some_and(|o| !o.may_cover(window, u, v)) {
-                            continue;
-                        }
-                        listed += 1;
-                        if listed > budget {
-                            return None;
-                        }
-                        let key = view.key_within(window, u, v, box_distance_sq);
-                        let cell = face_start[face] + v * window.side() + u;
-                        per_cell[cell as usize].push((key, group, triangle));
+        // Calls `list` with each cell that a sighting's outline may cover.
+        let covered = |sighting: &Sighting, list: &mut dyn FnMut(u32, u32, u32)| {
+            let window = &windows[sighting.face];
+            let (u0, v0, u1, v1) = sighting.view.cells(window);
+            for v in v0..=v1 {
+                for u in u0..=u1 {
+                    if sighting
+                        .outline
+                        .as_ref()
+                        .is_none_or(|o| o.may_cover(window, u, v))
+                    {
+                        list(face_start[sighting.face] + v * window.side() + u, u, v);
                     }
                 }
             }
+        };
+
+        // The lists are counted first, then filled in place: one array, sized once.
+        let mut start = vec![0u32; cell_count as usize + 1];
+        let mut total = 0;
+        for sighting in &seen {
+            covered(sighting, &mut |cell, _, _| {
+                start[cell as usize + 1] += 1;
+                total += 1;
+            });
+            if total > LISTINGS_PER_TRIANGLE * boxes.len() {
+                return None;
+            }
+        }
+        for cell in 0..cell_count as usize {
+            start[cell + 1] += start[cell];
+        }
+        let mut filled = start.clone();
+        let mut listings: Vec<Listed> = vec![(0.0, 0, 0); start[cell_count as usize] as usize];
+        for sighting in &seen {
+            let window = &windows[sighting.face];
+            covered(sighting, &mut |cell, u, v| {
+                let key = sighting
+                    .view
+                    .key_within(window, u, v, sighting.box_distance_sq);
+                listings[filled[cell as usize] as usize] = (key, sighting.group, sighting.triangle);
+                filled[cell as usize] += 1;
+            });
         }
 
-        let mut cells = Vec::with_capacity(per_cell.len());
-        let mut octets = Vec::new();
-        for mut list in per_cell {
+        let lists =
+            (0..cell_count as usize).map(|cell| start[cell] as usize..start[cell + 1] as usize);
+        let octet_count = lists
+            .clone()
+            .filter(|list| list.len() <= MAX_OCTETS * OCTET)
+            .map(|list| list.len().div_ceil(OCTET))
+            .sum();
+        let mut cells = Vec::with_capacity(cell_count as usize);
+        let mut octets = Vec::with_capacity(octet_count);
+        for list in lists {
+            let list = &mut listings[list];
             if list.len() > MAX_OCTETS * OCTET {
                 cells.push(CROWDED);
                 continue;
             }
             // Stable, so equal keys keep the mesh's order.
             list.sort_by(|a, b| a.0.total_cmp(&b.0));
-            let start = octets.len() as u32;
+            let first = octets.len() as u32;
             for chunk in list.chunks(OCTET) {
-                let ids: Vec<(u32, u32)> = chunk.iter().map(|&(_, g, t)| (t, g)).collect();
-                let corners: Vec<[Vec3A; 3]> = chunk
-                    .iter()
-                    .map(|&(_, g, t)| groups[g as usize].corners_of(t))
-                    .collect();
-                octets.push(TriangleOctet::new(&ids, &corners, chunk[0].0));
+                let mut ids = [(0, 0); OCTET];
+                let mut corners = [[Vec3A::ZERO; 3]; OCTET];
+                for (i, &(_, group, triangle)) in chunk.iter().enumerate() {
+                    ids[i] = (triangle, group);
+                    corners[i] = groups[group as usize].corners_of(triangle);
+                }
+                let n = chunk.len();
+                octets.push(TriangleOctet::new(&ids[..n], &corners[..n], chunk[0].0));
             }
-            cells.push((start, octets.len() as u32));
+            cells.push((first, octets.len() as u32));
         }
         Some(Self {
             instance: instance.clone(),
