@@ -181,9 +181,12 @@ impl Accelerator {
         {
             bvh = Bvh::single_leaf(bounds, primitives.len() as u32);
         }
+        // One light's buffer at a time would leave a core idle while a buffer lists a
+        // single mesh's triangles.
         let light_buffers = if options.light_buffers {
+            use rayon::prelude::*;
             lights
-                .iter()
+                .par_iter()
                 .map(|light| {
                     light.map(|position| {
                         LightBuffer::new(position, &primitives, options.light_triangles)
