@@ -190,15 +190,11 @@ impl LightBuffer {
         Some((self.occluders.get(start as usize..end as usize)?, seen))
     }
 
-    /// Occluder `occluder`'s placed mesh, and the octets of its triangles that a shadow ray
+    /// The octets of occluder `occluder`'s triangles (a placed mesh's) that a shadow ray
     /// seen as `seen` may meet, nearest first; None when the mesh is not listed triangle by
     /// triangle there, and its hierarchy answers.
     #[inline(always)]
-    pub(super) fn triangles(
-        &self,
-        occluder: &Occluder,
-        seen: Seen,
-    ) -> Option<(&Instance, &[TriangleOctet])> {
+    pub(super) fn triangles(&self, occluder: &Occluder, seen: Seen) -> Option<&[TriangleOctet]> {
         self.meshes.get(occluder.triangles as usize)?.at(seen)
     }
 

@@ -10,24 +10,17 @@ use super::instance::{Instance, Model};
 use super::outline::CellRectangle;
 use super::projected_triangle::ProjectedTriangle;
 use super::tile_projection::{ImageProjection, lower_bound_distance, tile_area};
-use crate::geometry::{GROUP_WIDTH, TriangleGroup, TriangleOctet};
-use glam::{DAffine3, DVec3, Vec3, Vec3A};
+use crate::geometry::{GROUP_WIDTH, ListedTriangle, OCTET_WIDTH, TriangleGroup, TriangleOctet};
+use glam::{DAffine3, DVec3, Vec3};
 
 /// A placed mesh whose triangles that a tile's rays may meet fill more than this many
 /// octets is left to its own hierarchy there.
 const MAX_LISTED_OCTETS: usize = 4;
 
-/// Triangles per octet.
-const OCTET: usize = 8;
-
 /// A placed mesh is listed triangle by triangle only when it has at most this many groups
 /// of four triangles per tile of its rectangle: a finer mesh would crowd every tile past
 /// `MAX_LISTED_OCTETS`, and listing it would cost more than it spares.
 const GROUPS_PER_TILE: usize = 4;
-
-/// A triangle listed in a tile: the lower bound of its hits' distance from the eye, its
-/// group, and its index in the mesh.
-type Listed = (f32, u32, u32);
 
 /// A placed mesh's triangles listed by tile.
 pub(super) struct MeshListing<'m> {
@@ -39,7 +32,7 @@ pub(super) struct MeshListing<'m> {
     columns: u32,
     /// For each tile of the rectangle, row by row, its triangles nearest box first; None
     /// where they would fill more than `MAX_LISTED_OCTETS`.
-    tiles: Vec<Option<Vec<Listed>>>,
+    tiles: Vec<Option<Vec<ListedTriangle>>>,
 }
 
 impl<'m> MeshListing<'m> {
@@ -95,7 +88,7 @@ impl<'m> MeshListing<'m> {
         }
         let mut order: Vec<u32> = (0..reached.len() as u32).collect();
         order.sort_by(|&a, &b| reached[a as usize].0.0.total_cmp(&reached[b as usize].0.0));
-        let mut tiles: Vec<Vec<Listed>> = vec![Vec::new(); area];
+        let mut tiles: Vec<Vec<ListedTriangle>> = vec![Vec::new(); area];
         for &i in &order {
             let (listed, outline, (a0, b0, a1, b1)) = &reached[i as usize];
             for ty in (*b0).max(y0)..=(*b1).min(y1) {
@@ -108,7 +101,9 @@ impl<'m> MeshListing<'m> {
         }
         let tiles = tiles
             .into_iter()
-            .map(|triangles| (triangles.len() <= MAX_LISTED_OCTETS * OCTET).then_some(triangles))
+            .map(|triangles| {
+                (triangles.len() <= MAX_LISTED_OCTETS * OCTET_WIDTH).then_some(triangles)
+            })
             .collect();
         Some(Self {
             groups,
@@ -121,7 +116,7 @@ impl<'m> MeshListing<'m> {
 
     /// The triangles listed in tile (tx, ty) of the rectangle, nearest box first; None
     /// where too many are, and the mesh's hierarchy must be walked.
-    pub(super) fn at(&self, tx: u32, ty: u32) -> Option<&[Listed]> {
+    pub(super) fn at(&self, tx: u32, ty: u32) -> Option<&[ListedTriangle]> {
         self.tiles[((ty - self.y0) * self.columns + (tx - self.x0)) as usize].as_deref()
     }
 
@@ -130,22 +125,17 @@ impl<'m> MeshListing<'m> {
         self.tiles
             .iter()
             .flatten()
-            .map(|t| t.len().div_ceil(OCTET))
+            .map(|t| t.len().div_ceil(OCTET_WIDTH))
             .sum()
     }
 
     /// The octets of `triangles` (one tile's, nearest box first), in order, onto `octets`.
-    pub(super) fn push_octets(&self, triangles: &[Listed], octets: &mut Vec<TriangleOctet>) {
-        for chunk in triangles.chunks(OCTET) {
-            let mut ids = [(0, 0); OCTET];
-            let mut corners = [[Vec3A::ZERO; 3]; OCTET];
-            for (i, &(_, group, triangle)) in chunk.iter().enumerate() {
-                ids[i] = (triangle, group);
-                corners[i] = self.groups[group as usize].corners_of(triangle);
-            }
-            let n = chunk.len();
-            octets.push(TriangleOctet::new(&ids[..n], &corners[..n], chunk[0].0));
-        }
+    pub(super) fn push_octets(
+        &self,
+        triangles: &[ListedTriangle],
+        octets: &mut Vec<TriangleOctet>,
+    ) {
+        TriangleOctet::pack(self.groups, triangles, octets);
     }
 }
 

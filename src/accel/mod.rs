@@ -511,7 +511,10 @@ impl Accelerator {
                 if Some(o.object) == leaving {
                     continue;
                 }
-                if opaque && let Some((mesh, triangles)) = buffer.triangles(o, seen) {
+                if opaque
+                    && let Some(triangles) = buffer.triangles(o, seen)
+                    && let Surface::Instance(mesh) = &self.primitives[o.primitive as usize].surface
+                {
                     if mesh.occludes_listed(&q, triangles, 1.0, distance_sq) {
                         return Vec3A::ZERO;
                     }

@@ -13,12 +13,8 @@ use super::instance::{Instance, Model};
 use super::light_faces::{
     CROWDED, FACES, FaceOutline, FaceView, Seen, Window, lower_bound_distance_sq,
 };
-use crate::geometry::{GROUP_WIDTH, TriangleOctet};
+use crate::geometry::{GROUP_WIDTH, ListedTriangle, OCTET_WIDTH, TriangleOctet};
 use glam::{DAffine3, DVec3, Vec3, Vec3A};
-use std::sync::Arc;
-
-/// Triangles per octet.
-const OCTET: usize = 8;
 
 /// A cell whose triangles fill more than this many octets is left to the mesh's hierarchy.
 const MAX_OCTETS: usize = 4;
@@ -40,9 +36,6 @@ const LISTINGS_PER_TRIANGLE: usize = 16;
 /// than the walks they spare.
 pub(super) const MAX_LISTED_TRIANGLES: usize = 1 << 16;
 
-/// A triangle listed in a cell: its sort key (`FaceView::key_within`), group and index.
-type Listed = (f32, u32, u32);
-
 /// A triangle as one face of the cube sees it.
 struct Sighting {
     view: FaceView,
@@ -58,8 +51,6 @@ struct Sighting {
 /// A placed mesh's triangles listed by the cells of the cube around one light.
 #[derive(Clone, Debug)]
 pub(super) struct MeshShadowListing {
-    /// The placed mesh.
-    instance: Arc<Instance>,
     /// Where each face's grid lies.
     windows: [Window; FACES],
     /// Where each face's cells start in `cells`.
@@ -74,7 +65,7 @@ impl MeshShadowListing {
     /// The triangles of the mesh placed by `instance` listed around a light at `light`,
     /// no shading point farther from it than `farthest`; None for a shape, or for a mesh
     /// too crowded around the light to list.
-    pub(super) fn new(instance: &Arc<Instance>, light: DVec3, farthest: f64) -> Option<Self> {
+    pub(super) fn new(instance: &Instance, light: DVec3, farthest: f64) -> Option<Self> {
         let Model::Mesh { mesh, groups, .. } = &**instance.model() else {
             return None;
         };
@@ -175,7 +166,8 @@ impl MeshShadowListing {
             start[cell + 1] += start[cell];
         }
         let mut filled = start.clone();
-        let mut listings: Vec<Listed> = vec![(0.0, 0, 0); start[cell_count as usize] as usize];
+        let mut listings: Vec<ListedTriangle> =
+            vec![(0.0, 0, 0); start[cell_count as usize] as usize];
         for sighting in &seen {
             let window = &windows[sighting.face];
             covered(sighting, &mut |cell, u, v| {
@@ -191,34 +183,24 @@ impl MeshShadowListing {
             (0..cell_count as usize).map(|cell| start[cell] as usize..start[cell + 1] as usize);
         let octet_count = lists
             .clone()
-            .filter(|list| list.len() <= MAX_OCTETS * OCTET)
-            .map(|list| list.len().div_ceil(OCTET))
+            .filter(|list| list.len() <= MAX_OCTETS * OCTET_WIDTH)
+            .map(|list| list.len().div_ceil(OCTET_WIDTH))
             .sum();
         let mut cells = Vec::with_capacity(cell_count as usize);
         let mut octets = Vec::with_capacity(octet_count);
         for list in lists {
             let list = &mut listings[list];
-            if list.len() > MAX_OCTETS * OCTET {
+            if list.len() > MAX_OCTETS * OCTET_WIDTH {
                 cells.push(CROWDED);
                 continue;
             }
             // Stable, so equal keys keep the mesh's order.
             list.sort_by(|a, b| a.0.total_cmp(&b.0));
             let first = octets.len() as u32;
-            for chunk in list.chunks(OCTET) {
-                let mut ids = [(0, 0); OCTET];
-                let mut corners = [[Vec3A::ZERO; 3]; OCTET];
-                for (i, &(_, group, triangle)) in chunk.iter().enumerate() {
-                    ids[i] = (triangle, group);
-                    corners[i] = groups[group as usize].corners_of(triangle);
-                }
-                let n = chunk.len();
-                octets.push(TriangleOctet::new(&ids[..n], &corners[..n], chunk[0].0));
-            }
+            TriangleOctet::pack(groups, list, &mut octets);
             cells.push((first, octets.len() as u32));
         }
         Some(Self {
-            instance: instance.clone(),
             windows,
             face_start,
             cells,
@@ -226,23 +208,19 @@ impl MeshShadowListing {
         })
     }
 
-    /// The placed mesh, and the octets of its triangles that a shadow ray seen as `seen`
-    /// may meet, nearest to the light first (`TriangleOctet::nearest`: a squared distance
-    /// from the light); None where too many are, and the mesh's hierarchy must be walked.
+    /// The octets of the triangles that a shadow ray seen as `seen` may meet, nearest to
+    /// the light first (`TriangleOctet::nearest`: a squared distance from the light); None
+    /// where too many are, and the mesh's hierarchy must be walked.
     #[inline(always)]
-    pub(super) fn at(&self, seen: Seen) -> Option<(&Instance, &[TriangleOctet])> {
+    pub(super) fn at(&self, seen: Seen) -> Option<&[TriangleOctet]> {
         let window = &self.windows[seen.face];
         let Some((u, v)) = window.cell_of(seen.tangents) else {
-            // Outside the window: no triangle is seen this way.
-            return Some((&self.instance, &[]));
+            return Some(&[]); // outside the window: no triangle is seen this way
         };
         let cell = self.face_start[seen.face] + v * window.side() + u;
         let (start, end) = self.cells[cell as usize];
         // A crowded cell's range is empty-backwards, which `get` refuses.
-        Some((
-            &self.instance,
-            self.octets.get(start as usize..end as usize)?,
-        ))
+        self.octets.get(start as usize..end as usize)
     }
 
     /// How many cells there are, how many are left to the hierarchy, and how many octets

@@ -31,5 +31,8 @@ pub use sphere::Sphere;
 pub use torus::Torus;
 pub use transform::Transform;
 pub use triangle::{Triangle, TriangleHit};
-pub use triangle_group::{GROUP_WIDTH, GroupPair, GroupRay, LaneRay, TriangleGroup, TriangleOctet};
+pub use triangle_group::{
+    GROUP_WIDTH, GroupPair, GroupRay, LaneRay, ListedTriangle, OCTET_WIDTH, TriangleGroup,
+    TriangleOctet,
+};
 pub use uv_frame::UvFrame;

@@ -422,6 +422,13 @@ impl GroupPair<'_> {
     }
 }
 
+/// Triangles per `TriangleOctet`.
+pub const OCTET_WIDTH: usize = 8;
+
+/// A triangle of a mesh in a sorted list (a first-hit tile's, a light cell's): the list's
+/// key, the group that holds the triangle, and its index in the mesh.
+pub type ListedTriangle = (f32, u32, u32);
+
 /// Up to eight triangles of a mesh, any of them (a first-hit tile's or a light cell's, in
 /// the order of their lists), corner
 /// by corner and axis by axis in eight lanes, tested at once by the same lane test as a
@@ -466,6 +473,22 @@ impl TriangleOctet {
             triangles: std::array::from_fn(|i| triangles[lane(i)]),
             count: corners.len() as u32,
             nearest,
+        }
+    }
+
+    /// The triangles of `listed` (sorted by key; their corners read from the mesh's
+    /// `groups`), eight to an octet in order, onto `octets`: each octet's key is its first
+    /// triangle's.
+    pub fn pack(groups: &[TriangleGroup], listed: &[ListedTriangle], octets: &mut Vec<Self>) {
+        for chunk in listed.chunks(OCTET_WIDTH) {
+            let mut ids = [(0, 0); OCTET_WIDTH];
+            let mut corners = [[Vec3A::ZERO; 3]; OCTET_WIDTH];
+            for (i, &(_, group, triangle)) in chunk.iter().enumerate() {
+                ids[i] = (triangle, group);
+                corners[i] = groups[group as usize].corners_of(triangle);
+            }
+            let n = chunk.len();
+            octets.push(Self::new(&ids[..n], &corners[..n], chunk[0].0));
         }
     }
 
