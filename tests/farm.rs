@@ -486,6 +486,60 @@ fn colour_encoding_and_exposure_do_what_they_say() {
     );
 }
 
+/// Frames rendered by one command each build on the frame before (only what moved is
+/// prepared again): a frame in which one of two opaque bunnies moves, one in which a light
+/// moves, and one in which only the camera does are each the image that frame rendered
+/// alone makes.
+#[test]
+fn frames_built_on_the_frame_before_equal_frames_rendered_alone() {
+    let d = Dir::new();
+    let bunny = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/meshes/bunny.obj");
+    let scene = d.write(
+        "moving.toml",
+        &format!(
+            "[camera]\neye = [0, 5, 22]\nlook_at = [0, 1, 0]\nfov = 40\n\n\
+             [[lights]]\nposition = [20, 40, 30]\n\n\
+             [[lights]]\nposition = [-20, 30, 10]\ncolor = [0.4, 0.4, 0.5]\n\n\
+             [[polygons]]\nname = \"floor\"\n\
+             vertices = [[-20, 0, 20], [20, 0, 20], [20, 0, -20], [-20, 0, -20]]\n\n\
+             [[meshes]]\nname = \"still\"\npath = \"{bunny}\"\ntranslate = [-4, 0, 0]\n\n\
+             [[meshes]]\nname = \"moving\"\npath = \"{bunny}\"\nsmooth = false\n\
+             translate = [4, 0, 0]\n\n\
+             [animation]\nframes = 4\n\n\
+             [[animation.track]]\ntarget = \"moving\"\nfield = \"translate\"\n\
+             interpolation = \"step\"\n\
+             keys = [{{ frame = 0, value = [4, 0, 0] }}, {{ frame = 1, value = [3, 0, 2] }}]\n\n\
+             [[animation.track]]\ntarget = \"lights[1]\"\nfield = \"position\"\n\
+             interpolation = \"step\"\n\
+             keys = [{{ frame = 0, value = [-20, 30, 10] }}, {{ frame = 2, value = [-10, 20, 25] }}]\n\n\
+             [[animation.track]]\ntarget = \"camera\"\nfield = \"eye\"\n\
+             interpolation = \"step\"\n\
+             keys = [{{ frame = 0, value = [0, 5, 22] }}, {{ frame = 3, value = [3, 6, 21] }}]\n"
+        ),
+    );
+    let scene = scene.to_str().unwrap();
+    let base = [
+        "render", scene, "--quiet", "--width", "120", "--height", "90",
+    ];
+    ok(&[&base[..], &["--frames", "all", "-o", &d.s("f_{frame}.png")]].concat());
+    let frame = |n: u32| rgb8(&d.path(&format!("f_{n}.png")));
+    for n in 1..4 {
+        assert_ne!(frame(n), frame(n - 1), "frame {n} moves something");
+        let alone = d.s(&format!("alone_{n}.png"));
+        ok(&[&base[..], &["--frame", &n.to_string(), "-o", &alone]].concat());
+        let (alone, together) = (rgb8(Path::new(&alone)), frame(n));
+        let differ = alone
+            .pixels()
+            .zip(together.pixels())
+            .filter(|(a, b)| a != b)
+            .count();
+        assert_eq!(
+            differ, 0,
+            "frame {n}: pixels that differ from the frame rendered alone"
+        );
+    }
+}
+
 /// Frames of an animation: a template names each file, `--skip-existing` renders only what
 /// is missing, the frame may come from the environment, and every frame is the same image
 /// however many threads render it.

@@ -18,7 +18,7 @@ use super::light_faces::{
     CROWDED, FACES, FaceView, Seen, Window, farthest, lower_bound_distance_sq,
 };
 use super::primitive::{Primitive, Surface};
-use super::shadow_listing::{MAX_LISTED_TRIANGLES, MeshShadowListing};
+use super::shadow_listing::{ListingSource, Listings, MAX_LISTED_TRIANGLES, MeshShadowListing};
 use crate::geometry::TriangleOctet;
 use glam::{DVec3, Vec3};
 use std::sync::Arc;
@@ -58,15 +58,21 @@ pub struct LightBuffer {
     /// Where each face's grid of cells lies.
     windows: [Window; FACES],
     /// The placed meshes listed triangle by triangle (`Occluder::triangles`).
-    meshes: Vec<MeshShadowListing>,
+    meshes: Vec<Arc<MeshShadowListing>>,
     /// The light the buffer was built around.
     position: Vec3,
 }
 
 impl LightBuffer {
     /// The lists around a light at `position` for `primitives`; with `mesh_triangles`, the
-    /// triangles of each placed mesh listed by its own finer cells too.
-    pub fn new(position: Vec3, primitives: &[Primitive], mesh_triangles: bool) -> Self {
+    /// triangles of each placed mesh listed by its own finer cells too, taken from `made`
+    /// where it holds them.
+    pub(super) fn new(
+        position: Vec3,
+        primitives: &[Primitive],
+        mesh_triangles: bool,
+        made: &Listings,
+    ) -> Self {
         let r = FACE_CELLS as usize;
         let cell_count = FACES * r * r;
         let light = position.as_dvec3();
@@ -117,7 +123,7 @@ impl LightBuffer {
         }
 
         let (meshes, listing_of) = if mesh_triangles {
-            list_meshes(primitives, light, farthest)
+            list_meshes(primitives, light, farthest, made)
         } else {
             (Vec::new(), vec![UNLISTED; primitives.len()])
         };
@@ -167,6 +173,11 @@ impl LightBuffer {
     /// The light the buffer was built around.
     pub fn position(&self) -> Vec3 {
         self.position
+    }
+
+    /// The placed meshes listed triangle by triangle.
+    pub(super) fn mesh_listings(&self) -> &[Arc<MeshShadowListing>] {
+        &self.meshes
     }
 
     /// The occluders a shadow ray may meet on the segment from the light to a point at
@@ -224,12 +235,14 @@ impl LightBuffer {
 /// (no shading point farther from it than `farthest`), built in parallel, and each
 /// primitive's index among them (`UNLISTED` for the others). Meshes are taken in the
 /// primitives' order while their triangles, counted once per instance, fit in
-/// `MAX_LISTED_TRIANGLES`: every instance of a mesh has lists of its own.
+/// `MAX_LISTED_TRIANGLES`: every instance of a mesh has lists of its own, made unless
+/// `made` holds them.
 fn list_meshes(
     primitives: &[Primitive],
     light: DVec3,
     farthest: f64,
-) -> (Vec<MeshShadowListing>, Vec<u32>) {
+    made: &Listings,
+) -> (Vec<Arc<MeshShadowListing>>, Vec<u32>) {
     use rayon::prelude::*;
     let mut left = MAX_LISTED_TRIANGLES;
     let chosen: Vec<(usize, &Arc<Instance>)> = primitives
@@ -249,9 +262,16 @@ fn list_meshes(
             })
         })
         .collect();
-    let built: Vec<(usize, Option<MeshShadowListing>)> = chosen
+    let built: Vec<(usize, Option<Arc<MeshShadowListing>>)> = chosen
         .into_par_iter()
-        .map(|(index, instance)| (index, MeshShadowListing::new(instance, light, farthest)))
+        .map(|(index, instance)| {
+            let source = ListingSource::new(instance, light, farthest);
+            let listing = match made.get(&source) {
+                Some(listing) => Some(listing.clone()),
+                None => MeshShadowListing::new(instance, source).map(Arc::new),
+            };
+            (index, listing)
+        })
         .collect();
     let mut listing_of = vec![UNLISTED; primitives.len()];
     let mut meshes = Vec::new();
@@ -323,7 +343,7 @@ mod tests {
     fn assert_every_occluder_listed(scene: &Accelerator, lights: &[Vec3]) {
         let bounds = scene.bounds().unwrap();
         for &light in lights {
-            let buffer = LightBuffer::new(light, scene.primitives(), true);
+            let buffer = LightBuffer::new(light, scene.primitives(), true, &Listings::new());
             let mut rng = Lcg(7);
             let mut blocked = 0;
             for _ in 0..20_000 {
@@ -415,14 +435,14 @@ mod tests {
                 }
             })
             .collect();
-        let census = LightBuffer::new(light, &herd, true).census();
+        let census = LightBuffer::new(light, &herd, true, &Listings::new()).census();
         assert_eq!(
             census.listed_meshes,
             MAX_LISTED_TRIANGLES / 3674,
             "{census:?}"
         );
         assert!(census.mesh_octets > 1000, "{census:?}");
-        let census = LightBuffer::new(light, &herd, false).census();
+        let census = LightBuffer::new(light, &herd, false, &Listings::new()).census();
         assert_eq!((census.listed_meshes, census.mesh_octets), (0, 0));
     }
 
@@ -445,7 +465,7 @@ mod tests {
                 material: i,
             })
             .collect();
-        let buffer = LightBuffer::new(Vec3::ZERO, &beads, true);
+        let buffer = LightBuffer::new(Vec3::ZERO, &beads, true, &Listings::new());
         let census = buffer.census();
         assert_eq!(census.cells, FACES * (FACE_CELLS * FACE_CELLS) as usize);
         assert_eq!(census.crowded, 0, "{census:?}");
@@ -465,7 +485,7 @@ mod tests {
         assert_eq!(buffer.at(Vec3::new(0.0, 0.0, 1000.0)).unwrap(), &[]);
         // The seed's light sees its scene with no crowded cell either.
         let (scene, light) = seed();
-        let census = LightBuffer::new(light, scene.primitives(), true).census();
+        let census = LightBuffer::new(light, scene.primitives(), true, &Listings::new()).census();
         assert_eq!(census.crowded, 0, "{census:?}");
     }
 
@@ -480,7 +500,7 @@ mod tests {
             object: 0,
             material: 0,
         };
-        let buffer = LightBuffer::new(light, &[around], true);
+        let buffer = LightBuffer::new(light, &[around], true, &Listings::new());
         let census = buffer.census();
         assert_eq!((census.empty, census.crowded), (0, 0));
         let listed = buffer.at(Vec3::new(-3.0, 0.1, 0.2)).unwrap();
@@ -509,7 +529,7 @@ mod tests {
                 material: 0,
             })
             .collect();
-        let buffer = LightBuffer::new(light, &primitives, true);
+        let buffer = LightBuffer::new(light, &primitives, true, &Listings::new());
         for (i, d) in directions.iter().enumerate() {
             let listed = buffer.at(*d * 20.0).unwrap();
             assert!(listed.iter().any(|o| o.primitive == i as u32), "{d}");
@@ -519,7 +539,7 @@ mod tests {
     #[test]
     fn the_light_itself_and_non_finite_directions_have_no_cell() {
         let (scene, light) = seed();
-        let buffer = LightBuffer::new(light, scene.primitives(), true);
+        let buffer = LightBuffer::new(light, scene.primitives(), true, &Listings::new());
         assert!(buffer.at(Vec3::ZERO).is_none());
         assert!(buffer.at(Vec3::new(f32::INFINITY, 0.0, 1.0)).is_none());
         assert!(buffer.at(Vec3::new(f32::NAN, 0.0, 1.0)).is_none());

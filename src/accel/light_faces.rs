@@ -30,7 +30,7 @@ pub(super) const CROWDED: (u32, u32) = (1, 0);
 /// `lo..lo + cells / scale` on each of its axes, fitted around the boxes seen through the
 /// face. A light far from a small scene sees it through a narrow window, and all its cells
 /// go to the scene.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub(super) struct Window {
     lo: [f32; 2],
     scale: [f32; 2],

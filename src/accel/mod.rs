@@ -52,6 +52,7 @@ use crate::appearance::ShadowFilters;
 use crate::camera::CameraRays;
 use crate::geometry::{Aabb, Ray, RayQuery, ShapeHit, SurfacePoint, TriangleOctet, UvFrame};
 use glam::{Vec3, Vec3A};
+use shadow_listing::Listings;
 use std::sync::Arc;
 
 /// Which shortcuts the layer builds. Every one leaves every image unchanged
@@ -164,6 +165,19 @@ impl Accelerator {
         lights: &[Option<Vec3>],
         options: AccelOptions,
     ) -> Self {
+        Self::build_reusing(primitives, object_count, lights, options, None)
+    }
+
+    /// `build`, taking from `previous` (the layer of the scene before an edit) each placed
+    /// mesh's lists around a light wherever neither has changed: an edit that moves one
+    /// light or one mesh lists only what it moved again. The lists are the same either way.
+    pub fn build_reusing(
+        primitives: Vec<Primitive>,
+        object_count: usize,
+        lights: &[Option<Vec3>],
+        options: AccelOptions,
+        previous: Option<&Accelerator>,
+    ) -> Self {
         let bounds: Vec<Aabb> = primitives.iter().map(|p| p.surface.bounds()).collect();
         let (mut bvh, order) = Bvh::build(&bounds);
         let primitives: Vec<Primitive> = order
@@ -185,11 +199,17 @@ impl Accelerator {
         // single mesh's triangles.
         let light_buffers = if options.light_buffers {
             use rayon::prelude::*;
+            let made: Listings = previous
+                .into_iter()
+                .flat_map(|p| p.light_buffers.iter().flatten())
+                .flat_map(|buffer| buffer.mesh_listings())
+                .map(|listing| (listing.source().clone(), listing.clone()))
+                .collect();
             lights
                 .par_iter()
                 .map(|light| {
                     light.map(|position| {
-                        LightBuffer::new(position, &primitives, options.light_triangles)
+                        LightBuffer::new(position, &primitives, options.light_triangles, &made)
                     })
                 })
                 .collect()

@@ -15,6 +15,9 @@ use super::light_faces::{
 };
 use crate::geometry::{GROUP_WIDTH, ListedTriangle, OCTET_WIDTH, TriangleOctet};
 use glam::{DAffine3, DVec3, Vec3, Vec3A};
+use std::collections::HashMap;
+use std::hash::{Hash, Hasher};
+use std::sync::Arc;
 
 /// A cell whose triangles fill more than this many octets is left to the mesh's hierarchy.
 const MAX_OCTETS: usize = 4;
@@ -48,9 +51,67 @@ struct Sighting {
     triangle: u32,
 }
 
+/// What a mesh's listing is made from: the model, where it is placed, the light, and how
+/// far from the light shading points may lie. A scene built again after an edit reuses
+/// the listing wherever it finds the same (its unchanged meshes around its unchanged
+/// lights). The model is held, not only its address, so that no other model can take that
+/// address while the listing lives; its placement is its map to the scene's space, from
+/// which `Transform` derives the rest.
+#[derive(Clone, Debug)]
+pub(super) struct ListingSource {
+    model: Arc<Model>,
+    to_scene: [u32; 12],
+    light: DVec3,
+    farthest: f64,
+}
+
+impl ListingSource {
+    pub(super) fn new(instance: &Instance, light: DVec3, farthest: f64) -> Self {
+        Self {
+            model: instance.model().clone(),
+            to_scene: instance
+                .transform()
+                .to_scene()
+                .to_cols_array()
+                .map(f32::to_bits),
+            light,
+            farthest,
+        }
+    }
+
+    /// The numbers compared and hashed, bit for bit.
+    fn bits(&self) -> (*const Model, [u32; 12], [u64; 3], u64) {
+        (
+            Arc::as_ptr(&self.model),
+            self.to_scene,
+            self.light.to_array().map(f64::to_bits),
+            self.farthest.to_bits(),
+        )
+    }
+}
+
+impl PartialEq for ListingSource {
+    fn eq(&self, other: &Self) -> bool {
+        self.bits() == other.bits()
+    }
+}
+
+impl Eq for ListingSource {}
+
+impl Hash for ListingSource {
+    fn hash<H: Hasher>(&self, state: &mut H) {
+        self.bits().hash(state);
+    }
+}
+
+/// Listings already made, by what they were made from (`ListingSource`).
+pub(super) type Listings = HashMap<ListingSource, Arc<MeshShadowListing>>;
+
 /// A placed mesh's triangles listed by the cells of the cube around one light.
 #[derive(Clone, Debug)]
 pub(super) struct MeshShadowListing {
+    /// What it was made from.
+    source: ListingSource,
     /// Where each face's grid lies.
     windows: [Window; FACES],
     /// Where each face's cells start in `cells`.
@@ -62,13 +123,14 @@ pub(super) struct MeshShadowListing {
 }
 
 impl MeshShadowListing {
-    /// The triangles of the mesh placed by `instance` listed around a light at `light`,
-    /// no shading point farther from it than `farthest`; None for a shape, or for a mesh
-    /// too crowded around the light to list.
-    pub(super) fn new(instance: &Instance, light: DVec3, farthest: f64) -> Option<Self> {
+    /// The triangles of the mesh placed by `instance` listed around the light of `source`
+    /// (made from `instance`), no shading point farther from it than its `farthest`; None
+    /// for a shape, or for a mesh too crowded around the light to list.
+    pub(super) fn new(instance: &Instance, source: ListingSource) -> Option<Self> {
         let Model::Mesh { mesh, groups, .. } = &**instance.model() else {
             return None;
         };
+        let (light, farthest) = (source.light, source.farthest);
         let transform = instance.transform();
         let to_scene = transform.to_scene();
         let to_scene = DAffine3::from_cols_array(&to_scene.to_cols_array().map(f64::from));
@@ -201,6 +263,7 @@ impl MeshShadowListing {
             cells.push((first, octets.len() as u32));
         }
         Some(Self {
+            source,
             windows,
             face_start,
             cells,
@@ -223,6 +286,11 @@ impl MeshShadowListing {
         self.octets.get(start as usize..end as usize)
     }
 
+    /// What the listing was made from.
+    pub(super) fn source(&self) -> &ListingSource {
+        &self.source
+    }
+
     /// How many cells there are, how many are left to the hierarchy, and how many octets
     /// the others hold (for tests and the bench).
     pub(super) fn census(&self) -> (usize, usize, usize) {
@@ -233,13 +301,15 @@ impl MeshShadowListing {
 
 #[cfg(test)]
 mod tests {
-    use super::Model;
-    use crate::accel::{AccelOptions, Reach, Toward};
+    use super::{MeshShadowListing, Model};
+    use crate::accel::{AccelOptions, Reach, Surface, Toward};
     use crate::geometry::{Ray, RayQuery};
     use crate::numerics::offset_ray_origin;
     use crate::scene::PreparedScene;
+    use crate::scene::{Geometry, ShapeDesc};
     use crate::xorshift::XorShift32;
     use glam::{Vec3, Vec3A};
+    use std::sync::Arc;
 
     /// Shadow rays toward five lights (the scene's, one among the bunnies, one far off, one
     /// just above a bunny's back and one inside a bunny's box) from points all over the three placed bunnies of
@@ -375,5 +445,113 @@ mod tests {
             blocked > 10_000 && lit > 10_000,
             "{blocked} blocked, {lit} lit"
         );
+    }
+
+    /// The lists of each light of `geometry`, in the lights' order.
+    fn listings(geometry: &Geometry) -> Vec<Vec<Arc<MeshShadowListing>>> {
+        (0..2)
+            .map(|light| {
+                let buffer = geometry.accel().light_buffer(light).unwrap();
+                buffer.mesh_listings().to_vec()
+            })
+            .collect()
+    }
+
+    /// Whether `a` and `b` hold the same lists, light by light and mesh by mesh.
+    fn same_lists(a: &[Vec<Arc<MeshShadowListing>>], b: &[Vec<Arc<MeshShadowListing>>]) -> bool {
+        let lists = |l: &Arc<MeshShadowListing>| {
+            (l.windows, l.face_start, l.cells.clone(), l.octets.clone())
+        };
+        a.len() == b.len()
+            && a.iter().zip(b).all(|(a, b)| {
+                a.len() == b.len() && a.iter().zip(b).all(|(a, b)| lists(a) == lists(b))
+            })
+    }
+
+    /// Whether `listing` is one of `made` (the same allocation).
+    fn one_of(listing: &Arc<MeshShadowListing>, made: &[Vec<Arc<MeshShadowListing>>]) -> bool {
+        made.iter().flatten().any(|m| Arc::ptr_eq(m, listing))
+    }
+
+    /// A scene built again after an edit takes from the scene before it the lists of the
+    /// meshes and lights the edit left alone, and lists again those it moved: moving a light
+    /// lists its meshes again and no other light's; moving a mesh lists it again around
+    /// every light and no other mesh. Each time the lists are those a fresh build makes.
+    #[test]
+    fn an_edit_lists_again_only_what_it_moved() {
+        let mut scene = crate::accel::tests::bunny_scene();
+        for object in &mut scene.objects {
+            object.material.transparency = 0.0;
+        }
+        let light = scene.lights[0];
+        scene.lights = vec![light, light.moved_by(Vec3::new(-9.0, 30.0, 20.0))];
+        let before = Geometry::new(&scene, AccelOptions::ALL);
+        let made_before = listings(&before);
+        assert_eq!(made_before.iter().map(Vec::len).collect::<Vec<_>>(), [3, 3]);
+
+        // The second light moved: its meshes are listed again, the first light's are not.
+        let mut lit = scene.clone();
+        lit.lights[1] = lit.lights[1].moved_by(Vec3::new(1.0, 1.0, 0.0));
+        let after = Geometry::rebuilt(&lit, &before);
+        let made_after = listings(&after);
+        let fresh = listings(&Geometry::new(&lit, AccelOptions::ALL));
+        assert!(same_lists(&made_after, &fresh));
+        assert!(made_after[0].iter().all(|l| one_of(l, &made_before)));
+        assert!(!made_after[1].iter().any(|l| one_of(l, &made_before)));
+
+        // The second bunny moved: it is listed again around both lights, and the others
+        // are not; every bunny keeps its model.
+        let mut moved = lit.clone();
+        let bunnies: Vec<usize> = (0..moved.objects.len())
+            .filter(|&i| matches!(moved.objects[i].shape, ShapeDesc::Mesh { .. }))
+            .collect();
+        let second = bunnies[1];
+        let ShapeDesc::Mesh { mesh, transform } = &moved.objects[second].shape else {
+            unreachable!("a bunny is a mesh");
+        };
+        let shifted = transform
+            .then(glam::Affine3A::from_translation(Vec3::new(0.5, 0.0, 0.0)))
+            .unwrap();
+        moved.objects[second].shape = ShapeDesc::Mesh {
+            mesh: mesh.clone(),
+            transform: shifted,
+        };
+        let last = Geometry::rebuilt(&moved, &after);
+        let made_last = listings(&last);
+        let fresh = listings(&Geometry::new(&moved, AccelOptions::ALL));
+        assert!(same_lists(&made_last, &fresh));
+        let moved_bunny =
+            |l: &Arc<MeshShadowListing>| l.source().to_scene == shifted_bits(&shifted);
+        for listing in made_last.iter().flatten() {
+            assert_eq!(one_of(listing, &made_after), !moved_bunny(listing));
+        }
+        assert_eq!(
+            made_last
+                .iter()
+                .flatten()
+                .filter(|l| moved_bunny(l))
+                .count(),
+            2
+        );
+        // The bunnies' models (smooth and faceted), made once and kept since.
+        let mesh_models = |geometry: &Geometry| -> Vec<Arc<Model>> {
+            let mut models: Vec<Arc<Model>> = Vec::new();
+            for primitive in geometry.accel().primitives() {
+                if let Surface::Instance(instance) = &primitive.surface
+                    && matches!(**instance.model(), Model::Mesh { .. })
+                    && !models.iter().any(|m| Arc::ptr_eq(m, instance.model()))
+                {
+                    models.push(instance.model().clone());
+                }
+            }
+            models
+        };
+        let (kept, first) = (mesh_models(&last), mesh_models(&before));
+        assert_eq!((kept.len(), first.len()), (2, 2));
+        assert!(kept.iter().all(|k| first.iter().any(|f| Arc::ptr_eq(k, f))));
+    }
+
+    fn shifted_bits(transform: &crate::geometry::Transform) -> [u32; 12] {
+        transform.to_scene().to_cols_array().map(f32::to_bits)
     }
 }

@@ -71,6 +71,9 @@ fn render_frames(args: &RenderArgs, pool: &rayon::ThreadPool, start: Instant) ->
         tile,
     )?;
     let mut load_seconds = Some(start.elapsed().as_secs_f64());
+    // The frame before and its prepared geometry: a frame that moves only some of the
+    // shapes and lights (or none) builds only what they touch.
+    let mut previous: Option<(Scene, Arc<PreparedScene>)> = None;
     for frame in frames {
         let path = out.path(frame, tile);
         // Checked before the frame is loaded: a farm's rerun skips what it has cheaply. Only
@@ -88,7 +91,7 @@ fn render_frames(args: &RenderArgs, pool: &rayon::ThreadPool, start: Instant) ->
         let plan = &make_plan(args, &scene)?;
         let stats_path = stats_out.as_ref().map(|t| t.path(frame, tile));
         let label = source.animation().map(|_| frame);
-        render_frame(
+        previous = Some(render_frame(
             args,
             scene,
             plan,
@@ -97,7 +100,8 @@ fn render_frames(args: &RenderArgs, pool: &rayon::ThreadPool, start: Instant) ->
             stats_path.as_deref(),
             label,
             load,
-        )?;
+            previous.as_ref(),
+        )?);
     }
     Ok(())
 }
@@ -295,7 +299,9 @@ fn make_plan(args: &RenderArgs, scene: &Scene) -> Result<Plan> {
     })
 }
 
-/// Renders one frame (or the region of it) to `path`.
+/// Renders one frame (or the region of it) to `path`, prepared from `previous` (the frame
+/// before and its preparation) where it can be (`PreparedScene::updated`); returns the
+/// frame's scene and preparation, for the next.
 #[allow(clippy::too_many_arguments)]
 fn render_frame(
     args: &RenderArgs,
@@ -306,7 +312,8 @@ fn render_frame(
     stats_path: Option<&Path>,
     frame: Option<u32>,
     load_seconds: f64,
-) -> Result<()> {
+    previous: Option<&(Scene, Arc<PreparedScene>)>,
+) -> Result<(Scene, Arc<PreparedScene>)> {
     let start = Instant::now();
     if let Some(depth) = args.max_depth {
         scene.render.max_depth = depth;
@@ -333,7 +340,10 @@ fn render_frame(
     };
 
     let build_start = Instant::now();
-    let prepared = Arc::new(PreparedScene::new(&scene));
+    let prepared = Arc::new(match previous {
+        Some((before, prepared)) => prepared.updated(before, &scene),
+        None => PreparedScene::new(&scene),
+    });
     let build_seconds = build_start.elapsed().as_secs_f64();
     prepared
         .check_coincident(&scene)
@@ -357,7 +367,7 @@ fn render_frame(
     let job = pool.install(|| {
         rayon::join(crate::fault_injection::injected_panic, || ());
         prism::render::render_region(
-            prepared,
+            prepared.clone(),
             scene.camera,
             settings,
             plan.region,
@@ -456,5 +466,5 @@ fn render_frame(
             saved: true
         });
     }
-    Ok(())
+    Ok((scene, prepared))
 }

@@ -434,7 +434,7 @@ pub type ListedTriangle = (f32, u32, u32);
 /// by corner and axis by axis in eight lanes, tested at once by the same lane test as a
 /// group: the octet finds bit for bit what testing its triangles one by one in lane order
 /// finds. Unused lanes repeat the last triangle and are masked off.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 #[repr(C, align(32))]
 pub struct TriangleOctet {
     /// `corners[k][a][i]`: corner k's coordinate on axis a, of lane i's triangle.

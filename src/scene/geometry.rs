@@ -214,6 +214,9 @@ fn csg_node(desc: &ShapeDesc, reach: f32, leaves: &mut Vec<CsgLeaf>) -> CsgNode 
 pub struct Geometry {
     accel: Accelerator,
     objects: Vec<ObjectGeometry>,
+    /// Each mesh's model (its hierarchy and triangle groups), by the scene's mesh, which
+    /// is held so that its address names it while this lives (`Geometry::rebuilt`).
+    models: Vec<(Arc<Mesh>, Arc<Model>)>,
 }
 
 impl Geometry {
@@ -237,10 +240,29 @@ impl Geometry {
 
     /// Flattens `scene`'s shapes and builds the acceleration layer with `options`.
     pub fn new(scene: &Scene, options: AccelOptions) -> Self {
+        Self::build(scene, options, None)
+    }
+
+    /// `scene` (an edit of the scene `previous` was made from) prepared with `previous`'s
+    /// options, taking from it what the edit left as it was: each mesh's model, and each
+    /// placed mesh's lists around a light (`Accelerator::build_reusing`). The same as
+    /// `Geometry::new` makes, in less time.
+    pub fn rebuilt(scene: &Scene, previous: &Geometry) -> Self {
+        Self::build(scene, previous.accel.options(), Some(previous))
+    }
+
+    fn build(scene: &Scene, options: AccelOptions, previous: Option<&Geometry>) -> Self {
         let mut primitives = Vec::new();
         let mut objects = Vec::with_capacity(scene.objects.len());
-        // One model per mesh, however many objects place it.
-        let mut models: HashMap<*const Mesh, Arc<Model>> = HashMap::new();
+        // One model per mesh, however many objects place it, and the one made before where
+        // the scene still holds the mesh: the previous geometry holds it too, so its
+        // address cannot have been taken by another.
+        let mut models: HashMap<*const Mesh, (Arc<Mesh>, Arc<Model>)> = previous
+            .into_iter()
+            .flat_map(|p| &p.models)
+            .map(|(mesh, model)| (Arc::as_ptr(mesh), (mesh.clone(), model.clone())))
+            .collect();
+        let mut used: HashMap<*const Mesh, (Arc<Mesh>, Arc<Model>)> = HashMap::new();
         let plane_reach = plane_reach(scene);
         // CSG members with materials of their own are numbered after the objects' own, in
         // the order `Scene::member_materials` lists them.
@@ -320,9 +342,11 @@ impl Geometry {
                     }
                 }
                 ShapeDesc::Mesh { mesh, transform } => {
-                    let model = models
-                        .entry(Arc::as_ptr(mesh))
-                        .or_insert_with(|| Arc::new(Model::mesh(mesh)));
+                    let (_, model) = used.entry(Arc::as_ptr(mesh)).or_insert_with(|| {
+                        models
+                            .remove(&Arc::as_ptr(mesh))
+                            .unwrap_or_else(|| (mesh.clone(), Arc::new(Model::mesh(mesh))))
+                    });
                     push_surface(Surface::Instance(Arc::new(Instance::new(
                         model.clone(),
                         *transform,
@@ -368,8 +392,18 @@ impl Geometry {
             });
         }
         let lights: Vec<Option<Vec3>> = scene.lights.iter().map(|l| l.position()).collect();
-        let accel = Accelerator::build(primitives, objects.len(), &lights, options);
-        Self { accel, objects }
+        let accel = Accelerator::build_reusing(
+            primitives,
+            objects.len(),
+            &lights,
+            options,
+            previous.map(|p| &p.accel),
+        );
+        Self {
+            accel,
+            objects,
+            models: used.into_values().collect(),
+        }
     }
 
     /// The acceleration layer: the primitives and how to find what rays meet.

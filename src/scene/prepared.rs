@@ -107,15 +107,17 @@ impl PreparedScene {
 
     /// `edited` prepared, where `self` is `before` prepared: the geometry is shared when
     /// the edit left it unchanged (a material, a light's colour, the background), so only
-    /// the appearance tables are made again.
+    /// the appearance tables are made again; otherwise it is built again with the same
+    /// shortcuts, reusing what the edit did not touch (`Geometry::rebuilt`).
     pub fn updated(&self, before: &Scene, edited: &Scene) -> Self {
-        if Geometry::same_for(before, edited) {
-            Self {
-                geometry: self.geometry.clone(),
-                appearance: Self::appearance_of(edited),
-            }
+        let geometry = if Geometry::same_for(before, edited) {
+            self.geometry.clone()
         } else {
-            Self::new(edited)
+            Arc::new(Geometry::rebuilt(edited, &self.geometry))
+        };
+        Self {
+            geometry,
+            appearance: Self::appearance_of(edited),
         }
     }
 
