@@ -1,11 +1,13 @@
 //! `prism bench edit`: what an appearance edit costs in a running render, against preparing
-//! the scene again (what every edit cost before geometry and appearance were kept apart).
+//! the scene again (what every edit cost before geometry and appearance were kept apart);
+//! and what a geometry edit in a mesh scene costs, prepared afresh and from the scene before.
 
-use super::scenes::sphere_field;
+use super::scenes::{herd, sphere_field};
 use super::timing::median;
 use anyhow::{Context, Result};
+use glam::{Affine3A, Vec3};
 use prism::render::{ProgressiveRender, RenderSettings};
-use prism::scene::PreparedScene;
+use prism::scene::{PreparedScene, Scene, ShapeDesc};
 use std::fmt::Write as _;
 use std::hint::black_box;
 use std::path::PathBuf;
@@ -58,6 +60,7 @@ pub fn run(cfg: Config) -> Result<()> {
     let restart = median(cfg.runs, || {
         job.edit_appearance(|a| a.set_material(0, material.clone()));
     });
+    let geometry = geometry_edits(cfg.runs)?;
 
     let mut md = String::new();
     writeln!(
@@ -81,6 +84,25 @@ pub fn run(cfg: Config) -> Result<()> {
         table * 1e6,
         restart * 1e3,
     )?;
+    writeln!(
+        md,
+        "\n## A geometry edit in a mesh scene\n\n\
+         Five placed bunnies under two point lights (`herd` in src/bench/scenes.rs), one light or \
+         one bunny moved by one unit along x, as dragging it in the viewer does. Prepared \
+         afresh, every mesh's hierarchy and every placed mesh's lists around every light are \
+         made again; prepared from the scene before (`PreparedScene::updated`), only the \
+         lists of what moved are. Medians of {} runs.\n\n\
+         | moved | prepared afresh | from the scene before |\n|---|---|---|",
+        cfg.runs
+    )?;
+    for (what, fresh, kept) in geometry {
+        writeln!(
+            md,
+            "| {what} | {:.1} ms | {:.1} ms |",
+            fresh * 1e3,
+            kept * 1e3
+        )?;
+    }
     print!("{md}");
     std::fs::create_dir_all(&cfg.out_dir)
         .with_context(|| format!("cannot create {}", cfg.out_dir.display()))?;
@@ -88,4 +110,38 @@ pub fn run(cfg: Config) -> Result<()> {
     prism::render::write_bytes(&path, md.as_bytes())?;
     eprintln!("wrote {}", path.display());
     Ok(())
+}
+
+/// The herd with one light, then one bunny, moved by a unit along x: for each, the median
+/// seconds of preparing it afresh and from the herd prepared.
+fn geometry_edits(runs: usize) -> Result<Vec<(&'static str, f64, f64)>> {
+    let scene = herd().context("the herd scene")?;
+    let prepared = PreparedScene::new(&scene);
+    let mut lit = scene.clone();
+    lit.lights[0] = lit.lights[0].moved_by(Vec3::X);
+    let mut moved = scene.clone();
+    let bunny = moved
+        .objects
+        .iter_mut()
+        .find_map(|o| match &mut o.shape {
+            ShapeDesc::Mesh { transform, .. } => Some(transform),
+            _ => None,
+        })
+        .context("the herd has bunnies")?;
+    *bunny = bunny
+        .then(Affine3A::from_translation(Vec3::X))
+        .context("a bunny moved by a unit")?;
+    let edits: [(&'static str, &Scene); 2] = [("light 0", &lit), ("the first bunny", &moved)];
+    Ok(edits
+        .into_iter()
+        .map(|(what, edited)| {
+            let fresh = median(runs, || {
+                black_box(PreparedScene::new(edited));
+            });
+            let kept = median(runs, || {
+                black_box(prepared.updated(&scene, edited));
+            });
+            (what, fresh, kept)
+        })
+        .collect())
 }

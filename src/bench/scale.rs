@@ -3,6 +3,7 @@
 //! the figures are the mesh's load and build time and bytes per triangle, one 800×600 pass
 //! over each, and the memory of 100 instances against one (docs/benchmarks/scale.md).
 
+use super::scenes::BUNNY_OBJ;
 use super::timing::median;
 use anyhow::{Context, Result};
 use prism::accel::{Model, Surface};
@@ -15,9 +16,6 @@ use std::fmt::Write as _;
 use std::hint::black_box;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-
-/// The bunny, as shipped in assets/meshes/.
-const BUNNY: &str = include_str!("../../assets/meshes/bunny.obj");
 
 /// What to measure and where the table goes.
 pub struct Config {
@@ -107,7 +105,7 @@ pub fn run(cfg: Config) -> Result<()> {
     } else {
         (4, 800, 600, 100)
     };
-    let bunny = parse_obj(BUNNY, usize::MAX, true)
+    let bunny = parse_obj(BUNNY_OBJ, usize::MAX, true)
         .map_err(|e| anyhow::anyhow!("bunny.obj:{}: {}", e.line, e.message))?
         .parts
         .remove(0)
@@ -128,13 +126,13 @@ pub fn run(cfg: Config) -> Result<()> {
     let model = Model::mesh(&big);
     let per_triangle = model.index_bytes() as f64 / triangles as f64;
 
-    let small_scene = bunny_scene(BUNNY, 1)?;
+    let small_scene = bunny_scene(BUNNY_OBJ, 1)?;
     let big_scene = bunny_scene(&big_obj, 1)?;
     let small_pass = pass_time(&small_scene, w, h, cfg.runs);
     let big_pass = pass_time(&big_scene, w, h, cfg.runs);
 
     let one = geometry_bytes(&PreparedScene::new(&small_scene));
-    let many_scene = bunny_scene(BUNNY, instances)?;
+    let many_scene = bunny_scene(BUNNY_OBJ, instances)?;
     let many = geometry_bytes(&PreparedScene::new(&many_scene));
 
     let mut md = String::new();

@@ -7,6 +7,7 @@
 //! named in its row, and the rest is measured.
 
 use super::scale::to_obj;
+use super::scenes::BUNNY_OBJ;
 use super::timing::{median, median_of, sorted};
 use anyhow::{Context, Result, bail};
 use prism::accel::Model;
@@ -21,8 +22,6 @@ use std::process::Command;
 use std::sync::Arc;
 use std::time::Instant;
 
-/// The bunny, as shipped in assets/meshes/.
-const BUNNY: &str = include_str!("../../assets/meshes/bunny.obj");
 /// The seed scene in POV-Ray's language, and the texture it reads.
 const SEED_POV: &str = include_str!("../../benches/reference/seed.pov");
 const EARTH_JPG: &[u8] = include_bytes!("../../assets/earth.jpg");
@@ -256,7 +255,7 @@ fn seed_rows(cfg: &Config, dir: &Path, rows: &mut Vec<Row>) -> Result<()> {
 fn mesh_rows(cfg: &Config, dir: &Path, rows: &mut Vec<Row>) -> Result<()> {
     let (w, h) = (800, 600);
     let fine_levels = if cfg.quick { 2 } else { 4 };
-    let bunny = parse_obj(BUNNY, usize::MAX, true)
+    let bunny = parse_obj(BUNNY_OBJ, usize::MAX, true)
         .map_err(|e| anyhow::anyhow!("bunny.obj:{}: {}", e.line, e.message))?
         .parts
         .remove(0)
