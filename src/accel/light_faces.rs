@@ -34,6 +34,8 @@ pub(super) const CROWDED: (u32, u32) = (1, 0);
 pub(super) struct Window {
     lo: [f32; 2],
     scale: [f32; 2],
+    /// A cell's width in tangents on each axis: 1 / scale, divided once.
+    step: [f64; 2],
     /// Cells along each side.
     cells: u32,
 }
@@ -60,6 +62,7 @@ impl Window {
             return Window {
                 lo: [2.0; 2],
                 scale: [1.0; 2],
+                step: [1.0; 2],
                 cells,
             };
         }
@@ -74,6 +77,7 @@ impl Window {
         Window {
             lo: [lo_u, lo_v],
             scale: [scale_u, scale_v],
+            step: [1.0 / scale_u as f64, 1.0 / scale_v as f64],
             cells,
         }
     }
@@ -94,7 +98,7 @@ impl Window {
 
     /// The tangents that cell `c` of `axis` spans.
     pub(super) fn tangents(&self, axis: usize, c: u32) -> (f64, f64) {
-        let (lo, step) = (self.lo[axis] as f64, 1.0 / self.scale[axis] as f64);
+        let (lo, step) = (self.lo[axis] as f64, self.step[axis]);
         (lo + c as f64 * step, lo + (c + 1) as f64 * step)
     }
 

@@ -212,15 +212,20 @@ impl MeshShadowListing {
             }
         };
 
-        // The lists are counted first, then filled in place: one array, sized once.
+        // Each listing once, in the sightings' order, with the cell it goes to; then put in
+        // its cell's list by counting, which keeps that order within each list.
+        let mut entries: Vec<(u32, ListedTriangle)> = Vec::new();
         let mut start = vec![0u32; cell_count as usize + 1];
-        let mut total = 0;
         for sighting in &seen {
-            covered(sighting, &mut |cell, _, _| {
+            let window = &windows[sighting.face];
+            covered(sighting, &mut |cell, u, v| {
+                let key = sighting
+                    .view
+                    .key_within(window, u, v, sighting.box_distance_sq);
+                entries.push((cell, (key, sighting.group, sighting.triangle)));
                 start[cell as usize + 1] += 1;
-                total += 1;
             });
-            if total > LISTINGS_PER_TRIANGLE * boxes.len() {
+            if entries.len() > LISTINGS_PER_TRIANGLE * boxes.len() {
                 return None;
             }
         }
@@ -228,17 +233,10 @@ impl MeshShadowListing {
             start[cell + 1] += start[cell];
         }
         let mut filled = start.clone();
-        let mut listings: Vec<ListedTriangle> =
-            vec![(0.0, 0, 0); start[cell_count as usize] as usize];
-        for sighting in &seen {
-            let window = &windows[sighting.face];
-            covered(sighting, &mut |cell, u, v| {
-                let key = sighting
-                    .view
-                    .key_within(window, u, v, sighting.box_distance_sq);
-                listings[filled[cell as usize] as usize] = (key, sighting.group, sighting.triangle);
-                filled[cell as usize] += 1;
-            });
+        let mut listings: Vec<ListedTriangle> = vec![(0.0, 0, 0); entries.len()];
+        for (cell, listed) in entries {
+            listings[filled[cell as usize] as usize] = listed;
+            filled[cell as usize] += 1;
         }
 
         let lists =
