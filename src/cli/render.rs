@@ -100,7 +100,7 @@ fn render_frames(args: &RenderArgs, pool: &rayon::ThreadPool, start: Instant) ->
             stats_path.as_deref(),
             label,
             load,
-            previous.as_ref(),
+            previous.take(),
         )?);
     }
     Ok(())
@@ -300,8 +300,8 @@ fn make_plan(args: &RenderArgs, scene: &Scene) -> Result<Plan> {
 }
 
 /// Renders one frame (or the region of it) to `path`, prepared from `previous` (the frame
-/// before and its preparation) where it can be (`PreparedScene::updated`); returns the
-/// frame's scene and preparation, for the next.
+/// before and its preparation) where it can be (`PreparedScene::updated`), which is let go
+/// once this frame is prepared; returns the frame's scene and preparation, for the next.
 #[allow(clippy::too_many_arguments)]
 fn render_frame(
     args: &RenderArgs,
@@ -312,7 +312,7 @@ fn render_frame(
     stats_path: Option<&Path>,
     frame: Option<u32>,
     load_seconds: f64,
-    previous: Option<&(Scene, Arc<PreparedScene>)>,
+    previous: Option<(Scene, Arc<PreparedScene>)>,
 ) -> Result<(Scene, Arc<PreparedScene>)> {
     let start = Instant::now();
     if let Some(depth) = args.max_depth {
@@ -341,7 +341,8 @@ fn render_frame(
 
     let build_start = Instant::now();
     let prepared = Arc::new(match previous {
-        Some((before, prepared)) => prepared.updated(before, &scene),
+        // Dropped here: the frame before's geometry is not held through this one's render.
+        Some((before, prepared)) => prepared.updated(&before, &scene),
         None => PreparedScene::new(&scene),
     });
     let build_seconds = build_start.elapsed().as_secs_f64();
