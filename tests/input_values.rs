@@ -254,6 +254,17 @@ fn scene_messages_point_at_what_is_wrong() {
          keys = [{ frame = 0, value = 1 }, { frame = 1e300, value = 2 }]\n",
         &["got 1e300"],
     );
+    // A key's value past the coordinates' bound is named with the bound and the value.
+    refused(
+        "[[spheres]]\nname = \"b\"\ncenter = [0, 0, -5]\nradius = 1\n[animation]\nframes = 3\n\
+         [[animation.track]]\ntarget = \"b\"\nfield = \"center\"\n\
+         keys = [{ frame = 0, value = [0, 0, -5] }, { frame = 2, value = [0, 0, -5e13] }]\n",
+        &[
+            "keys[1]: `value`",
+            "at most 1e12",
+            "got [0.0, 0.0, -50000000000000.0]",
+        ],
+    );
     refused(
         "[[spheres]]\ncenter = [0, 0, -5]\nradius = 1\n[animation]\nframes = 3\ntracks = []\n",
         &["[animation]", "did you mean \"track\""],

@@ -297,7 +297,11 @@ impl Track {
                 .iter()
                 .any(|v| !v.is_finite() || v.abs() > limits::MAX_COORDINATE)
             {
-                return fail(format!("keys[{k}]: `value` must hold finite numbers"));
+                return fail(format!(
+                    "keys[{k}]: `value` must hold finite numbers of at most {:e} in size, got \
+                     {value:?}",
+                    limits::MAX_COORDINATE
+                ));
             }
             match scalar {
                 None => scalar = Some((is_scalar, value.len())),
